@@ -1,0 +1,161 @@
+// The validated preset: plain data, the contract every later stage reads.
+// SPEC §6. Lengths are world units, altitudes are normalised to [0, 1] from the
+// ground (z = 0) to the top of grid.size, angles are degrees.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rockbake {
+
+using Vec3d = std::array<double, 3>;
+
+struct GridParams {
+  Vec3d size{4.0, 4.0, 6.0};  // simulation domain, world units, all > 0
+  int resolution = 96;        // voxels along the longest side, 8..2048
+  bool ground = true;         // false: free-floating rock, rockfall off
+};
+
+// ---- initial shape (SPEC §2.8) ----
+struct BoxShape {
+  Vec3d size;
+};
+struct CylinderShape {
+  double radius;
+  double height;
+};
+struct SphereShape {
+  double radius;
+};
+// An L-shaped block: two walls of thickness `wall` meeting at a right angle,
+// footprint size[0] × size[1], height size[2]. The re-entrant corner opens
+// towards +x +y.
+struct InsideCornerShape {
+  Vec3d size;
+  double wall;
+};
+enum class ImageMode { Extrude, Revolve };
+struct ImageShape {
+  std::filesystem::path path;  // absolute (resolved against the preset's folder)
+  ImageMode mode = ImageMode::Extrude;
+  double height;  // extrude: extrusion height; revolve: height of the profile
+};
+using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape>;
+
+struct ShapeParams {
+  ShapeKind kind = BoxShape{{2.0, 2.0, 2.0}};
+  // Where the shape's centre (x, y) and base (z) go; default: centred in x, y,
+  // resting on the ground.
+  std::optional<Vec3d> center;
+};
+
+// ---- durability graph (SPEC §2.4) ----
+struct NoiseParams {
+  double amplitude = 0.0;  // durability units, >= 0
+  double period = 1.0;     // world units, > 0
+  int octaves = 1;         // 1..8
+};
+struct DurabilityGraph {
+  // (altitude, durability), altitudes strictly increasing in [0, 1], durability > 0.
+  std::vector<std::array<double, 2>> points{{0.0, 1.0}, {1.0, 1.0}};
+  // One entry per segment (points.size() - 1 entries) or empty for none.
+  std::vector<std::optional<NoiseParams>> noise;
+};
+struct DurabilityKeyframe {
+  double at = 0.0;  // simulation time (world units of time), >= 0
+  DurabilityGraph graph;
+};
+struct DurabilityParams {
+  DurabilityGraph graph;
+  std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
+};
+
+// ---- bubbles (SPEC §2.3) ----
+struct BubbleSpec {
+  enum class Kind { Sphere, Ellipsoid, Box, Collection };
+  Kind kind = Kind::Sphere;
+  // Sphere: extents[0] = radius; Ellipsoid: radii; Box: half extents. World units.
+  Vec3d extents{0.0, 0.0, 0.0};
+  struct Member;
+  std::vector<Member> members;  // Collection only
+};
+struct BubbleSpec::Member {
+  BubbleSpec bubble;
+  double weight = 1.0;  // > 0
+};
+
+struct BubbleBand {
+  double up_to = 1.0;  // upper altitude of the band; bands strictly increasing, last = 1
+  BubbleSpec bubble;
+  double spheroidal = 1.0;  // k_s >= 0
+  double cavernous = 0.0;   // k_c >= 0
+};
+
+// ---- decimation response f (SPEC §2.5) ----
+struct ResponseParams {
+  enum class Kind { Power, Threshold, Curve };
+  Kind kind = Kind::Power;
+  double value = 1.0;                        // power p > 0, or threshold t in [0, 1)
+  std::vector<std::array<double, 2>> curve;  // Curve: x strictly increasing from 0 to 1
+};
+
+// ---- rockfall and colluvium (SPEC §2.6, §2.7) ----
+enum class RockfallMode { Drop, Crumble, Off };
+struct RockfallParams {
+  RockfallMode mode = RockfallMode::Drop;
+};
+struct ColluviumParams {
+  double yield = 0.5;         // units of colluvium per decimated rock voxel, 0..1
+  double talus_angle = 35.0;  // degrees, 0 < angle < 90
+  double removal = 0.0;       // fraction of exposed colluvium carried away per cycle, 0..1
+};
+
+// ---- how long to weather (SPEC §2.9) ----
+struct StopParams {
+  std::optional<double> time;                  // world units of time; cycles = ceil(time / h)
+  std::optional<int> cycles;                   // exactly one of time / cycles is set
+  std::optional<double> rock_volume_fraction;  // stop once rock <= fraction × initial
+};
+
+// ---- later stages (accepted and validated now; used by the mesh and render stages) ----
+struct MeshParams {
+  double smoothing = 1.0;    // 0..4
+  int subdivision = 2;       // 0..3
+  std::vector<double> lods;  // ratios in (0, 1), decreasing
+};
+enum class Palette { Natural, Debug, Curvature };
+struct BakeParams {
+  Palette palette = Palette::Natural;
+};
+struct RenderParams {
+  std::string template_name = "studio";
+  int width = 640;
+  int height = 480;
+  int turntable_frames = 0;  // 0: no turntable
+};
+
+struct Preset {
+  std::filesystem::path file;  // where it was read from
+  int schema = 1;              // `rockbake:` version
+  std::string name;            // [a-z0-9_-]+
+  std::uint64_t seed = 0;
+  GridParams grid;
+  ShapeParams shape;
+  DurabilityParams durability;
+  std::vector<BubbleBand> bubbles;  // never empty after loading
+  ResponseParams response;
+  RockfallParams rockfall;
+  ColluviumParams colluvium;
+  StopParams stop;
+  MeshParams mesh;
+  BakeParams bake;
+  std::vector<std::string> exports{"ply", "obj", "glb", "vdb"};
+  RenderParams render;
+};
+
+}  // namespace rockbake

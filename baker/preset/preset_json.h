@@ -1,0 +1,12 @@
+// The resolved preset as JSON: every key, defaults filled in (stats.json "preset").
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "preset/preset.h"
+
+namespace rockbake {
+
+nlohmann::json presetToJson(const Preset& preset);
+
+}  // namespace rockbake

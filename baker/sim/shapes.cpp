@@ -1,0 +1,129 @@
+#include "sim/shapes.h"
+
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include "io/png_image.h"
+#include "sim/durability.h"
+#include "util/error.h"
+
+namespace rockbake {
+namespace {
+
+// Lets a boundary that falls exactly on a voxel centre count as inside.
+constexpr double kEps = 1e-9;
+
+using InsideTest = std::function<bool(double x, double y, double z)>;
+
+// Inside tests in world coordinates; (cx, cy) is the centre, bz the base.
+InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, const Preset& preset) {
+  struct Visitor {
+    double cx, cy, bz;
+    const Preset& preset;
+
+    InsideTest operator()(const BoxShape& b) const {
+      const Vec3d s = b.size;
+      return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+        return std::abs(x - cx) <= s[0] / 2 + kEps && std::abs(y - cy) <= s[1] / 2 + kEps && z >= bz - kEps &&
+               z <= bz + s[2] + kEps;
+      };
+    }
+    InsideTest operator()(const CylinderShape& c) const {
+      return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+        return std::hypot(x - cx, y - cy) <= c.radius + kEps && z >= bz - kEps && z <= bz + c.height + kEps;
+      };
+    }
+    InsideTest operator()(const SphereShape& s) const {
+      const double cz = bz + s.radius;
+      return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+        return std::hypot(x - cx, y - cy, z - cz) <= s.radius + kEps;
+      };
+    }
+    InsideTest operator()(const InsideCornerShape& c) const {
+      const double x0 = cx - c.size[0] / 2, y0 = cy - c.size[1] / 2;
+      return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+        const double u = x - x0, v = y - y0;
+        if (z < bz - kEps || z > bz + c.size[2] + kEps) return false;
+        if (u < -kEps || v < -kEps || u > c.size[0] + kEps || v > c.size[1] + kEps) return false;
+        return u <= c.wall + kEps || v <= c.wall + kEps;  // the two walls of the L
+      };
+    }
+    InsideTest operator()(const ImageShape& img) const {
+      GrayImage image;
+      try {
+        image = readPngGray(img.path);
+      } catch (const std::exception& e) {
+        throw InputError({preset.file.string()}, "shape.image.path", e.what(),
+                         "give a readable black-and-white PNG; paths are relative to the preset");
+      }
+      if (image.width <= 0 || image.height <= 0)
+        throw InputError({preset.file.string()}, "shape.image.path", "the image " + img.path.string() + " is empty");
+      const auto white = [image](int px, int py) {
+        return px >= 0 && py >= 0 && px < image.width && py < image.height && image.at(px, py) >= 128;
+      };
+      const double W = image.width, H = image.height;
+      if (img.mode == ImageMode::Extrude) {
+        // The footprint fills the domain's x-y extent as far as its aspect allows.
+        const double pixel = std::min(preset.grid.size[0] / W, preset.grid.size[1] / H);
+        return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+          if (z < bz - kEps || z > bz + img.height + kEps) return false;
+          const int px = int(std::floor((x - cx) / pixel + W / 2));
+          const int py = int(std::floor(H / 2 - (y - cy) / pixel));  // image rows run down, y runs up
+          return white(px, py);
+        };
+      }
+      // Revolve: the profile's rows span `height`; its left edge is the axis.
+      const double pixel = img.height / H;
+      return [=, cx = cx, cy = cy, bz = bz](double x, double y, double z) {
+        if (z < bz - kEps) return false;
+        const int px = int(std::floor(std::hypot(x - cx, y - cy) / pixel));
+        const int py = int(std::floor(H - (z - bz) / pixel));
+        return white(px, py);
+      };
+    }
+  };
+  return std::visit(Visitor{cx, cy, bz, preset}, kind);
+}
+
+}  // namespace
+
+VoxelRock buildInitialRock(const Preset& preset) {
+  VoxelRock rock;
+  rock.layout = computeGridLayout(preset);
+  const GridLayout& g = rock.layout;
+  const Vec3d& domain = preset.grid.size;
+  const Vec3d center = preset.shape.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
+  const InsideTest inside = insideTest(preset.shape.kind, center[0], center[1], center[2], preset);
+
+  rock.material.assign(g.cellCount(), Material::Air);
+  rock.integrity.assign(g.cellCount(), 1.f);
+  rock.durability.assign(g.cellCount(), 0.f);
+
+  std::vector<char> clipped(std::size_t(g.nz), 0);
+  tbb::parallel_for(0, g.nz, [&](int z) {
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const Vec3d p = g.center(x, y, z);
+        if (!inside(p[0], p[1], p[2])) continue;
+        const bool in_domain = p[0] > 0 && p[1] > 0 && p[0] < domain[0] && p[1] < domain[1] && p[2] < domain[2];
+        if (in_domain)
+          rock.material[g.index(x, y, z)] = Material::Rock;
+        else
+          clipped[std::size_t(z)] = 1;
+      }
+  });
+  if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end())
+    spdlog::warn("{}: the shape reaches beyond grid.size and was clipped to it", preset.file.string());
+  if (rock.count(Material::Rock) == 0)
+    throw InputError({preset.file.string()}, "shape", "the shape covers no voxel of the grid",
+                     "check its size and center against grid.size, or raise grid.resolution");
+
+  assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0));
+  return rock;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,33 @@
+// Errors the command line turns into exit statuses (SPEC §6):
+//   InputError → 2 (bad preset or arguments), anything else → 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rockbake {
+
+// Where in an input a problem is. line/column are 1-based; 0 = unknown.
+struct SourceLocation {
+  std::string file;  // path as given, or "--set" / "<command line>"
+  int line = 0;
+  int column = 0;
+};
+
+// A problem with what the user gave us: a preset, a file it names, a flag.
+// what() is the full message: "file:line:col: key.path: problem. hint".
+class InputError : public std::runtime_error {
+ public:
+  InputError(SourceLocation where, std::string key_path, std::string problem, std::string hint = {});
+
+  const SourceLocation& where() const { return where_; }
+  const std::string& keyPath() const { return key_path_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  SourceLocation where_;
+  std::string key_path_;
+  std::string problem_;
+};
+
+}  // namespace rockbake
