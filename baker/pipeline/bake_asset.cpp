@@ -1,0 +1,97 @@
+#include "pipeline/bake_asset.h"
+
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "io/vdb_file.h"
+#include "preset/preset_json.h"
+#include "sim/shapes.h"
+#include "sim/weathering.h"
+
+namespace rockbake {
+namespace {
+
+class StageClock {
+ public:
+  // Seconds since the last call (or construction).
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const auto& c : cycles)
+    list.push_back({{"cycle", c.cycle},
+                    {"time", c.time},
+                    {"rock", c.rock},
+                    {"exposed", c.exposed},
+                    {"decimated", c.decimated},
+                    {"colluvium", c.colluvium},
+                    {"fallen", c.fallen},
+                    {"removed", c.removed},
+                    {"deposited", c.deposited},
+                    {"crumbled", c.crumbled}});
+  return list;
+}
+
+}  // namespace
+
+BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
+  BakeSummary summary;
+  summary.asset_dir = options.out_dir / preset.name;
+  nlohmann::ordered_json stages;
+  stages["load"] = options.load_seconds;
+  StageClock clock;
+  const auto total_start = std::chrono::steady_clock::now();
+
+  VoxelRock initial = buildInitialRock(preset);
+  const GridLayout& g = initial.layout;
+  summary.initial_rock = initial.count(Material::Rock);
+  stages["shape"] = clock.lap();
+  const int planned = plannedCycles(preset, g.h);
+  spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles", preset.name, g.nx, g.ny, g.nz, g.h,
+               summary.initial_rock, planned);
+
+  int last_percent = -1;
+  WeatheringResult weathered = weatherRock(std::move(initial), preset, [&](const CycleStats& c) {
+    const int percent = 100 * c.cycle / planned;
+    if (percent / 10 != last_percent / 10) {
+      spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", preset.name, c.cycle, planned, percent,
+                   c.rock, c.exposed, c.decimated);
+      last_percent = percent;
+    }
+  });
+  stages["simulate"] = clock.lap();
+  double curvature = 0, colluvium = 0, rockfall = 0;
+  for (const auto& c : weathered.cycles)
+    curvature += c.curvature_seconds, colluvium += c.colluvium_seconds, rockfall += c.rockfall_seconds;
+  stages["simulate_curvature"] = curvature;
+  stages["simulate_colluvium"] = colluvium;
+  stages["simulate_rockfall"] = rockfall;
+  summary.cycles = int(weathered.cycles.size());
+  summary.final_rock = weathered.rock.count(Material::Rock);
+
+  writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
+  stages["write_vdb"] = clock.lap();
+
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count();
+  stages["total"] = summary.seconds + options.load_seconds;
+  nlohmann::ordered_json stats;
+  stats["cycles"] = cyclesToJson(weathered.cycles);
+  stats["stages"] = stages;
+  stats["preset"] = presetToJson(preset);
+  writeFileAtomically(summary.asset_dir / "stats.json", stats.dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,30 @@
+// BakeAsset: the recipe. One validated preset in, one asset folder out:
+//   preset ─▶ initial rock ─▶ weathering cycles ─▶ OUT/<name>/{rock.vdb, stats.json}
+// Each stage is a function of the previous stage's value; every file is
+// written atomically, so a failed bake never leaves a file that looks complete.
+#pragma once
+
+#include <filesystem>
+
+#include "preset/preset.h"
+
+namespace rockbake {
+
+struct BakeOptions {
+  std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
+  bool mesh = true;                       // --no-mesh turns the mesh stage off
+  bool render = true;                     // --no-render turns the render stage off
+  double load_seconds = 0.0;              // time the caller spent loading the preset
+};
+
+struct BakeSummary {
+  std::filesystem::path asset_dir;
+  int cycles = 0;
+  std::size_t initial_rock = 0;
+  std::size_t final_rock = 0;
+  double seconds = 0.0;
+};
+
+BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options);
+
+}  // namespace rockbake

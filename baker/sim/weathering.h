@@ -1,0 +1,76 @@
+// The weathering cycles (SPEC §2.5–2.9): each cycle estimates the exposure
+// of every exposed rock voxel from the state at the cycle's start, lowers its
+// integrity by w / D, and decimates all voxels whose integrity reached 0
+// together; then colluvium is deposited, settled and carried away, and
+// whatever no longer touches the ground falls. The result does not depend on
+// the thread count.
+//
+// Cost per cycle grows with the number of exposed voxels, not the grid: the
+// exposed set and the air bit field are updated from the cells that changed.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "preset/preset.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake {
+
+struct CycleStats {
+  int cycle = 0;              // 1-based
+  double time = 0.0;          // simulation time at the cycle's end (world units)
+  std::size_t rock = 0;       // rock voxels after the cycle
+  std::size_t exposed = 0;    // rock voxels that weathered in this cycle
+  std::size_t decimated = 0;  // rock voxels turned to air
+  std::size_t colluvium = 0;  // colluvium voxels after the cycle
+  std::size_t fallen = 0;     // voxels moved by rockfall
+  std::size_t removed = 0;    // colluvium voxels carried away
+  std::size_t deposited = 0;  // colluvium voxels created from decimated rock
+  std::size_t crumbled = 0;   // fallen rock voxels turned into colluvium
+  // Wall-clock seconds of the cycle's phases (for profiles; not deterministic).
+  double curvature_seconds = 0.0;
+  double colluvium_seconds = 0.0;
+  double rockfall_seconds = 0.0;
+};
+
+struct WeatheringResult {
+  VoxelRock rock;
+  std::vector<CycleStats> cycles;
+};
+
+// Number of cycles a preset asks for at voxel size h: cycles, or ceil(time / h).
+int plannedCycles(const Preset& preset, double h);
+
+// One simulation, cycle by cycle: for callers that watch or time single
+// cycles. Setup (bit field, exposed set) is done once in the constructor.
+class WeatheringSimulation {
+ public:
+  // `preset` is read throughout and must outlive the simulation.
+  WeatheringSimulation(VoxelRock rock, const Preset& preset);
+  ~WeatheringSimulation();
+  WeatheringSimulation(const WeatheringSimulation&) = delete;
+  WeatheringSimulation& operator=(const WeatheringSimulation&) = delete;
+
+  CycleStats step();      // runs the next cycle
+  bool finished() const;  // planned cycles done, or `until` reached
+  const VoxelRock& rock() const;
+  double pendingColluvium() const;  // fractional units waiting in the accumulators
+  VoxelRock release();              // the rock; the simulation is spent
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+using CycleObserver = std::function<void(const CycleStats&)>;
+
+WeatheringResult weatherRock(VoxelRock rock, const Preset& preset, const CycleObserver& observe = {});
+
+// Calibrated exposure s of every voxel of `rock` (0 where not exposed rock),
+// using the preset's bubble graph: the curvature attribute later stages bake.
+std::vector<float> exposureField(const VoxelRock& rock, const Preset& preset);
+
+}  // namespace rockbake
