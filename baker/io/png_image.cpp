@@ -1,0 +1,71 @@
+#include "io/png_image.h"
+
+#include <png.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace rockbake {
+namespace {
+
+// A corrupt header can claim any size; refuse before allocating.
+constexpr std::uint64_t kMaxPixels = std::uint64_t(1) << 28;
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& problem) {
+  throw std::runtime_error("cannot read PNG " + file.string() + ": " + problem);
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+// png_image_free is safe on a never-started or already-finished image.
+struct ImageGuard {
+  png_image* image;
+  ~ImageGuard() { png_image_free(image); }
+};
+
+}  // namespace
+
+GrayImage readPngGray(const std::filesystem::path& file) {
+  // Open it ourselves so a missing file reports the OS reason, not libpng's wording.
+  std::unique_ptr<std::FILE, FileCloser> stream(std::fopen(file.c_str(), "rb"));
+  if (!stream) fail(file, std::generic_category().message(errno));
+
+  // libpng says only "Read Error" for a short non-PNG file; check the signature ourselves.
+  png_byte signature[8] = {};
+  const std::size_t signature_bytes = std::fread(signature, 1, sizeof signature, stream.get());
+  if (signature_bytes != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
+    fail(file, "not a PNG file (no PNG signature)");
+  }
+  std::rewind(stream.get());
+
+  // The simplified API does the setjmp error handling internally and reports
+  // failures through image.message, so no longjmp crosses C++ frames here.
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  ImageGuard guard{&image};
+  if (!png_image_begin_read_from_stdio(&image, stream.get())) {
+    fail(file, std::string("bad PNG header: ") + image.message);
+  }
+  if (std::uint64_t(image.width) * image.height > kMaxPixels) {
+    fail(file, std::to_string(image.width) + "x" + std::to_string(image.height) + " pixels is too large");
+  }
+
+  image.format = PNG_FORMAT_GRAY;
+  GrayImage result;
+  result.width = int(image.width);
+  result.height = int(image.height);
+  result.pixels.assign(PNG_IMAGE_SIZE(image), 0);
+  const png_color black{0, 0, 0};
+  if (!png_image_finish_read(&image, &black, result.pixels.data(), 0, nullptr)) {
+    fail(file, std::string("truncated or corrupt image data: ") + image.message);
+  }
+  return result;
+}
+
+}  // namespace rockbake
