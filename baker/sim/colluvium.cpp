@@ -1,0 +1,170 @@
+#include "sim/colluvium.h"
+
+#include <cmath>
+#include <deque>
+#include <numbers>
+
+#include "util/hash.h"
+
+namespace rockbake {
+namespace {
+
+struct Coord {
+  int x, y, z;
+};
+inline Coord coordOf(const GridLayout& g, std::uint32_t c) {
+  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
+  return {int(c % std::size_t(g.nx)), int((c % layer) / std::size_t(g.nx)), int(c / layer)};
+}
+
+inline bool isAir(const VoxelRock& rock, int x, int y, int z) {
+  const GridLayout& g = rock.layout;
+  if (z < 0) return !g.ground;
+  if (!g.contains(x, y, z)) return true;
+  return rock.material[g.index(x, y, z)] == Material::Air;
+}
+
+// The 8 neighbour columns, edges before corners so ties prefer the nearer.
+constexpr int kColumns[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+
+}  // namespace
+
+ColluviumModel::ColluviumModel(const GridLayout& layout, const ColluviumParams& params, std::uint64_t seed)
+    : layout_(layout),
+      params_(params),
+      seed_(seed),
+      talus_slope_(std::tan(params.talus_angle * std::numbers::pi / 180.0)),
+      yield_units_(std::llround(params.yield * double(kUnit))),
+      accumulator_(std::size_t(layout.nx) * std::size_t(layout.ny), 0) {}
+
+std::int64_t ColluviumModel::restingCell(const VoxelRock& rock, int x, int y, int z) const {
+  const GridLayout& g = layout_;
+  // From an occupied start (an earlier unit landed there) climb to the first air.
+  while (z < g.nz && !isAir(rock, x, y, z)) ++z;
+  if (z >= g.nz) return -1;
+  while (z > 0 && isAir(rock, x, y, z - 1)) --z;
+  if (z == 0 && isAir(rock, x, y, -1)) return -1;  // no ground: nothing to land on
+  return std::int64_t(g.index(x, y, z));
+}
+
+std::size_t ColluviumModel::deposit(VoxelRock& rock, const std::vector<Cell>& decimated, std::vector<Cell>& changed,
+                                    std::vector<Cell>& unstable) {
+  const GridLayout& g = layout_;
+  std::size_t created = 0;
+  for (Cell c : decimated) {  // in cell order: deterministic
+    const Coord p = coordOf(g, c);
+    std::int64_t& acc = accumulator_[std::size_t(p.x) + std::size_t(g.nx) * std::size_t(p.y)];
+    acc += yield_units_;
+    while (acc >= kUnit) {
+      const std::int64_t landing = restingCell(rock, p.x, p.y, p.z);
+      if (landing < 0) break;  // the unit waits in the accumulator
+      acc -= kUnit;
+      rock.material[std::size_t(landing)] = Material::Colluvium;
+      rock.durability[std::size_t(landing)] = 0.f;
+      changed.push_back(Cell(landing));
+      unstable.push_back(Cell(landing));
+      ++created;
+    }
+  }
+  return created;
+}
+
+std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& colluvium_cells, int cycle,
+                                   std::vector<Cell>& changed, std::vector<Cell>& vacated,
+                                   std::vector<Cell>& unstable) {
+  if (params_.removal <= 0.0) return 0;
+  const GridLayout& g = layout_;
+  // Decide from the state before any removal, so the order does not matter.
+  std::vector<Cell> carried;
+  for (Cell c : colluvium_cells) {
+    const Coord p = coordOf(g, c);
+    const bool exposed = isAir(rock, p.x - 1, p.y, p.z) || isAir(rock, p.x + 1, p.y, p.z) ||
+                         isAir(rock, p.x, p.y - 1, p.z) || isAir(rock, p.x, p.y + 1, p.z) ||
+                         isAir(rock, p.x, p.y, p.z - 1) || isAir(rock, p.x, p.y, p.z + 1);
+    if (exposed &&
+        unitInterval(counterHash(seed_, purposeId("colluvium-removal"), std::uint64_t(cycle), c)) < params_.removal)
+      carried.push_back(c);
+  }
+  for (Cell c : carried) {
+    rock.material[c] = Material::Air;
+    changed.push_back(c);
+    vacated.push_back(c);
+    const Coord p = coordOf(g, c);
+    // What rested on or leaned against it may now slide.
+    for (int dz = 0; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (g.contains(p.x + dx, p.y + dy, p.z + dz)) unstable.push_back(Cell(g.index(p.x + dx, p.y + dy, p.z + dz)));
+  }
+  return carried.size();
+}
+
+void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
+                            std::vector<Cell>& vacated) {
+  const GridLayout& g = layout_;
+  // Where the colluvium voxel at p goes next, or -1 when it is stable.
+  const auto nextCell = [&](const Coord& p) -> std::int64_t {
+    if (p.z > 0 && isAir(rock, p.x, p.y, p.z - 1)) return restingCell(rock, p.x, p.y, p.z - 1);  // it falls
+    if (!isAir(rock, p.x, p.y, p.z + 1)) return -1;  // covered: held in place
+    // Top of a pile: slide to the neighbour column where it rests lowest, if
+    // that drop is steeper than the talus angle allows.
+    std::int64_t target = -1;
+    int best_rest = p.z;
+    for (const auto& col : kColumns) {
+      const int x = p.x + col[0], y = p.y + col[1];
+      if (!g.contains(x, y, p.z) || !isAir(rock, x, y, p.z)) continue;
+      const std::int64_t rest = restingCell(rock, x, y, p.z);
+      if (rest < 0) continue;
+      const int rest_z = coordOf(g, Cell(rest)).z;
+      const double distance = (col[0] != 0 && col[1] != 0) ? std::numbers::sqrt2 : 1.0;
+      if (double(p.z - rest_z) > talus_slope_ * distance && rest_z < best_rest) {
+        best_rest = rest_z;
+        target = rest;
+      }
+    }
+    return target;
+  };
+
+  std::deque<Cell> queue(unstable.begin(), unstable.end());
+  unstable.clear();
+  while (!queue.empty()) {
+    const Cell start = queue.front();
+    queue.pop_front();
+    if (rock.material[start] != Material::Colluvium) continue;
+    // Follow the voxel down-slope to where it rests. The cells it passes
+    // through are held only for this moment, so leaving them disturbs nothing.
+    Cell at = start;
+    for (std::int64_t next = nextCell(coordOf(g, at)); next >= 0; next = nextCell(coordOf(g, at))) {
+      rock.material[std::size_t(next)] = Material::Colluvium;
+      rock.material[at] = Material::Air;
+      at = Cell(next);
+    }
+    if (at == start) continue;
+    changed.push_back(start);
+    changed.push_back(at);
+    vacated.push_back(start);
+    // Leaving its starting place can free the voxel it rested on (air above
+    // it now) and the neighbour columns' voxels at its level and above (a
+    // lower column beside them). Lower ones are unaffected: this column is
+    // still solid below that level.
+    const Coord p = coordOf(g, start);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const bool below = dx == 0 && dy == 0 && dz == -1;
+          const bool beside = (dx != 0 || dy != 0) && dz >= 0;
+          if ((below || beside) && g.contains(p.x + dx, p.y + dy, p.z + dz)) {
+            const Cell n = Cell(g.index(p.x + dx, p.y + dy, p.z + dz));
+            if (rock.material[n] == Material::Colluvium) queue.push_back(n);
+          }
+        }
+  }
+}
+
+double ColluviumModel::pendingUnits() const {
+  std::int64_t total = 0;
+  for (std::int64_t a : accumulator_) total += a;
+  return double(total) / double(kUnit);
+}
+
+}  // namespace rockbake

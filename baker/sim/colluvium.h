@@ -1,0 +1,56 @@
+// Colluvium (SPEC §2.7): weathered rock piles up at the foot of the rock.
+//
+// Each decimated rock voxel adds `yield` units to its (x, y) column's
+// accumulator (fixed point, so sums are exact); every whole unit becomes a
+// COLLUVIUM voxel dropped from the decimated voxel straight down onto the
+// first solid below. Settling is Musgrave et al.'s thermal weathering on
+// voxels: a colluvium voxel with air above moves to the 8-neighbour column
+// where it would rest lowest while that drop exceeds tan(talus_angle) ·
+// distance (distance 1 or √2 voxels); one with air below falls. Removal
+// carries away exposed colluvium voxels with probability `removal` per cycle,
+// decided by a counter hash of (seed, cycle, cell).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "preset/preset.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake {
+
+class ColluviumModel {
+ public:
+  using Cell = std::uint32_t;
+
+  ColluviumModel(const GridLayout& layout, const ColluviumParams& params, std::uint64_t seed);
+
+  // Records every cell whose material changed in `changed`, every cell that
+  // stopped being solid in `vacated`, and colluvium that may be unstable in
+  // `unstable` (feed it to settle()). Return the voxels created / removed.
+  std::size_t deposit(VoxelRock& rock, const std::vector<Cell>& decimated, std::vector<Cell>& changed,
+                      std::vector<Cell>& unstable);
+  std::size_t remove(VoxelRock& rock, const std::vector<Cell>& colluvium_cells, int cycle, std::vector<Cell>& changed,
+                     std::vector<Cell>& vacated, std::vector<Cell>& unstable);
+  // Moves colluvium until every pile is stable; `unstable` is consumed.
+  void settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed, std::vector<Cell>& vacated);
+
+  // Fractional units waiting in the accumulators (for conservation checks).
+  double pendingUnits() const;
+
+  static constexpr std::int64_t kUnit = std::int64_t(1) << 24;  // one voxel in accumulator units
+
+ private:
+  // The cell a unit dropped at (x, y) from height z comes to rest in, or -1.
+  std::int64_t restingCell(const VoxelRock& rock, int x, int y, int z) const;
+
+  GridLayout layout_;
+  ColluviumParams params_;
+  std::uint64_t seed_;
+  double talus_slope_;                     // tan(talus_angle)
+  std::int64_t yield_units_;               // yield in accumulator units
+  std::vector<std::int64_t> accumulator_;  // per (x, y) column
+};
+
+}  // namespace rockbake

@@ -1,0 +1,294 @@
+#include "sim/rockfall.h"
+
+#include <algorithm>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+namespace rockbake {
+namespace {
+
+using Cell = std::uint32_t;
+
+constexpr int kFace[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+
+struct Coord {
+  int x, y, z;
+};
+inline Coord coordOf(const GridLayout& g, Cell c) {
+  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
+  return {int(c % std::size_t(g.nx)), int((c % layer) / std::size_t(g.nx)), int(c / layer)};
+}
+
+inline bool isSolid(Material m) {
+  return m != Material::Air;
+}
+
+}  // namespace
+
+RockfallSolver::RockfallSolver(const GridLayout& layout)
+    : layout_(layout),
+      stamp_(layout.cellCount(), 0),
+      state_(layout.cellCount(), 0),
+      local_budget_(std::size_t(layout.ny) * std::size_t(layout.nz) * 4) {}
+
+// For each 6-connected cluster K of removed cells, the solid cells next to K
+// (and the ground, if K touched it) must still be connected to each other
+// through solid. Then any path through K can be rerouted, so every cell keeps
+// the ground connection it had. The searches stay near each cluster and within
+// a budget; false means "not shown", and the caller labels the grid.
+bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vector<Cell>& removed) {
+  const GridLayout& g = layout_;
+  // Mark the removed cells (1); cells already put in a cluster become 2.
+  for (Cell c : removed) state_[c] = 1;
+  struct Unmark {
+    std::vector<std::uint8_t>& state;
+    const std::vector<Cell>& cells;
+    ~Unmark() {
+      for (Cell c : cells) state[c] = 0;
+    }
+  } unmark{state_, removed};
+  std::size_t spent = 0;
+  std::vector<Cell> cluster, neighbours, queue;
+  for (Cell start : removed) {
+    if (state_[start] != 1) continue;
+    // Gather the cluster, the solid cells around it and its bounding box.
+    cluster.assign(1, start);
+    state_[start] = 2;
+    neighbours.clear();
+    bool touches_ground = false;
+    Coord lo = coordOf(g, start), hi = lo;
+    for (std::size_t i = 0; i < cluster.size(); ++i) {
+      const Coord p = coordOf(g, cluster[i]);
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+      if (p.z == 0) touches_ground = true;
+      for (const auto& o : kFace) {
+        if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
+        const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
+        if (isSolid(rock.material[n])) {
+          neighbours.push_back(n);
+        } else if (state_[n] == 1) {
+          state_[n] = 2;
+          cluster.push_back(n);
+        }
+      }
+    }
+    std::sort(neighbours.begin(), neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
+    const std::size_t goals = neighbours.size() + (touches_ground ? 1 : 0);
+    if (goals <= 1) continue;  // nothing on one side of the cluster to be cut from the other
+
+    // Search from one neighbour until every other neighbour is found, inside
+    // the cluster's box grown by `grow` voxels: paths found there are real
+    // paths, and the detours that matter are local. The ground joins every
+    // solid cell of the layer z = 0 (it holds them all up), so reaching that
+    // layer reaches the ground and, through it, the rest of the layer.
+    const auto connectedWithin = [&](int grow) {
+      const Coord box_lo{lo.x - grow, lo.y - grow, lo.z - grow}, box_hi{hi.x + grow, hi.y + grow, hi.z + grow};
+      const auto inBox = [&](const Coord& q) {
+        return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z && q.x <= box_hi.x &&
+               q.y <= box_hi.y && q.z <= box_hi.z;
+      };
+      if (++current_stamp_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), current_stamp_ = 1;
+      std::size_t found = 0;
+      bool ground_found = false;
+      const auto visit = [&](Cell c) {
+        if (stamp_[c] == current_stamp_ || !isSolid(rock.material[c])) return;
+        stamp_[c] = current_stamp_;
+        queue.push_back(c);
+        if (std::binary_search(neighbours.begin(), neighbours.end(), c)) ++found;
+      };
+      queue.clear();
+      visit(neighbours.front());
+      for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
+        if (++spent > local_budget_) return false;
+        const Coord p = coordOf(g, queue[head]);
+        if (p.z == 0 && !ground_found) {
+          ground_found = true;
+          if (touches_ground) ++found;
+          for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
+            for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
+        }
+        for (const auto& o : kFace) {
+          const Coord q{p.x + o[0], p.y + o[1], p.z + o[2]};
+          if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
+        }
+      }
+      return found >= goals;
+    };
+    // Most clusters are settled within one voxel around them; a few need room.
+    if (!connectedWithin(1) && !connectedWithin(4)) return false;
+  }
+  return true;
+}
+
+// Solid cells not connected to the ground, in cell order. Labelling works on
+// runs of solid cells along x: runs are found per layer in parallel, then
+// runs that overlap in neighbouring rows are joined with union-find (a few
+// runs per row, so this is cheap), and runs joined to a z = 0 run stand.
+std::vector<Cell> RockfallSolver::floatingCells(const VoxelRock& rock) const {
+  const GridLayout& g = layout_;
+  struct Run {
+    int x0, x1;  // inclusive
+  };
+  const std::size_t rows = std::size_t(g.ny) * std::size_t(g.nz);
+  std::vector<std::vector<Run>> layer_runs(std::size_t(g.nz));
+  std::vector<std::uint32_t> row_runs(rows, 0);  // runs per row
+  tbb::parallel_for(0, g.nz, [&](int z) {
+    auto& runs = layer_runs[std::size_t(z)];
+    for (int y = 0; y < g.ny; ++y) {
+      const Material* row = &rock.material[g.index(0, y, z)];
+      std::uint32_t count = 0;
+      for (int x = 0; x < g.nx;) {
+        if (!isSolid(row[x])) {
+          ++x;
+          continue;
+        }
+        const int x0 = x;
+        while (x < g.nx && isSolid(row[x])) ++x;
+        runs.push_back({x0, x - 1});
+        ++count;
+      }
+      row_runs[std::size_t(y) + std::size_t(g.ny) * std::size_t(z)] = count;
+    }
+  });
+  std::vector<std::uint32_t> row_start(rows + 1, 0);
+  for (std::size_t r = 0; r < rows; ++r) row_start[r + 1] = row_start[r] + row_runs[r];
+  std::vector<Run> runs;
+  runs.reserve(row_start[rows]);
+  for (const auto& layer : layer_runs) runs.insert(runs.end(), layer.begin(), layer.end());
+
+  std::vector<std::uint32_t> parent(runs.size());
+  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto find = [&](std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  // Joins the runs of two rows that overlap in x (face neighbours).
+  const auto joinRows = [&](std::size_t a, std::size_t b) {
+    std::uint32_t i = row_start[a], j = row_start[b];
+    while (i < row_start[a + 1] && j < row_start[b + 1]) {
+      if (runs[i].x1 >= runs[j].x0 && runs[j].x1 >= runs[i].x0) {
+        const std::uint32_t ri = find(i), rj = find(j);
+        if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+      }
+      if (runs[i].x1 < runs[j].x1)
+        ++i;
+      else
+        ++j;
+    }
+  };
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y) {
+      const std::size_t row = std::size_t(y) + std::size_t(g.ny) * std::size_t(z);
+      if (y > 0) joinRows(row, row - 1);
+      if (z > 0) joinRows(row, row - std::size_t(g.ny));
+    }
+  std::vector<std::uint8_t> grounded(runs.size(), 0);
+  for (std::uint32_t i = 0; i < row_start[std::size_t(g.ny)]; ++i) grounded[find(i)] = 1;  // layer z = 0
+
+  std::vector<Cell> floating;
+  for (std::size_t row = 0; row < rows; ++row)
+    for (std::uint32_t i = row_start[row]; i < row_start[row + 1]; ++i)
+      if (!grounded[find(i)]) {
+        const int y = int(row % std::size_t(g.ny)), z = int(row / std::size_t(g.ny));
+        for (int x = runs[i].x0; x <= runs[i].x1; ++x) floating.push_back(Cell(g.index(x, y, z)));
+      }
+  return floating;
+}
+
+RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::vector<Cell> removed_solid,
+                                      bool label_everything) {
+  RockfallOutcome outcome;
+  if (mode == RockfallMode::Off || !layout_.ground) return outcome;
+  // Cells refilled since they were vacated are solid again: not removed.
+  std::erase_if(removed_solid, [&](Cell c) { return isSolid(rock.material[c]); });
+  // Labelling costs about one visit per row of the grid; a removal that large
+  // would cost the local test more than that, so it goes straight to labelling.
+  const bool worth_a_local_test = removed_solid.size() < std::size_t(layout_.ny) * std::size_t(layout_.nz) / 2;
+  if (!label_everything && worth_a_local_test && removalKeepsSupport(rock, removed_solid)) return outcome;
+  outcome.labelled = true;
+  const GridLayout& g = layout_;
+
+  // Split the floating cells into 6-connected pieces (in cell order).
+  const std::vector<Cell> floating = floatingCells(rock);
+  if (floating.empty()) return outcome;
+  std::vector<int> piece_of_floating(floating.size(), -1);
+  const auto floatingIndex = [&](Cell c) -> std::ptrdiff_t {
+    const auto it = std::lower_bound(floating.begin(), floating.end(), c);
+    return (it != floating.end() && *it == c) ? it - floating.begin() : -1;
+  };
+  std::vector<std::vector<Cell>> pieces;
+  for (std::size_t s = 0; s < floating.size(); ++s) {
+    if (piece_of_floating[s] >= 0) continue;
+    const int id = int(pieces.size());
+    pieces.emplace_back(1, floating[s]);
+    piece_of_floating[s] = id;
+    auto& piece = pieces.back();
+    for (std::size_t i = 0; i < piece.size(); ++i) {
+      const Coord p = coordOf(g, piece[i]);
+      for (const auto& o : kFace) {
+        if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
+        const std::ptrdiff_t f = floatingIndex(Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2])));
+        if (f >= 0 && piece_of_floating[std::size_t(f)] < 0) {
+          piece_of_floating[std::size_t(f)] = id;
+          piece.push_back(floating[std::size_t(f)]);
+        }
+      }
+    }
+    std::sort(piece.begin(), piece.end());
+  }
+
+  // Drop the pieces, lowest first, in passes until none moves: a piece that
+  // landed on another floating piece falls again once that one has moved.
+  std::vector<std::uint8_t> in_piece(g.cellCount(), 0);
+  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
+  for (bool moved = true; moved;) {
+    moved = false;
+    std::vector<std::size_t> order(pieces.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return pieces[a].front() < pieces[b].front(); });
+    for (std::size_t id : order) {
+      auto& piece = pieces[id];
+      for (Cell c : piece) in_piece[c] = 1;
+      // How far the piece can fall: the smallest air gap below any of its
+      // cells that sits on something other than the piece itself.
+      int drop = std::numeric_limits<int>::max();
+      for (Cell c : piece) {
+        const Coord p = coordOf(g, c);
+        if (p.z > 0 && in_piece[c - layer]) continue;
+        int gap = 0, z = p.z - 1;
+        while (z >= 0 && !isSolid(rock.material[g.index(p.x, p.y, z)])) ++gap, --z;
+        if (z >= 0 && in_piece[g.index(p.x, p.y, z)]) continue;
+        drop = std::min(drop, gap);
+      }
+      for (Cell c : piece) in_piece[c] = 0;
+      if (drop == 0 || drop == std::numeric_limits<int>::max()) continue;
+      moved = true;
+      // Move bottom-up (cells are in ascending order, so z ascends).
+      const std::size_t shift = std::size_t(drop) * layer;
+      for (Cell c : piece) {
+        const Cell to = Cell(c - shift);
+        const bool crumble = mode == RockfallMode::Crumble && rock.material[c] == Material::Rock;
+        outcome.crumbled += crumble ? 1 : 0;
+        rock.material[to] = crumble ? Material::Colluvium : rock.material[c];
+        rock.integrity[to] = rock.integrity[c];
+        rock.durability[to] = crumble ? 0.f : rock.durability[c];
+        rock.material[c] = Material::Air;
+        rock.durability[c] = 0.f;
+        outcome.changed.push_back(c);
+        outcome.changed.push_back(to);
+      }
+      outcome.fallen += piece.size();
+      for (Cell& c : piece) c = Cell(c - shift);
+    }
+  }
+  // A cell can be vacated by one move and landed on by another: report it once.
+  std::sort(outcome.changed.begin(), outcome.changed.end());
+  outcome.changed.erase(std::unique(outcome.changed.begin(), outcome.changed.end()), outcome.changed.end());
+  return outcome;
+}
+
+}  // namespace rockbake
