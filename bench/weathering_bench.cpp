@@ -1,0 +1,160 @@
+// Bubble counting and weathering cycles (figures in bench/README.md).
+//
+//   BM_AlphaNaive / BM_AlphaRows: α for a radius-6 sphere bubble on the
+//     exposed voxels of a weathering 96³ cube, the naive triple loop against
+//     the bit-row counter (checked equal before timing).
+//   BM_Cycle/N/threads: one weathering cycle of an N³ cube.
+//   BM_CycleFixedRock/N: one cycle of the same 32³ rock in an N³ grid: the
+//     cost must follow the exposed voxels, not the grid's volume.
+//   BM_CycleWithDebris/N/threads: a cycle of an N³ cube on the ground with
+//     rockfall and colluvium on; counters give each phase's share.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <iostream>
+
+#include <tbb/global_control.h>
+
+#include "sim/bubble.h"
+#include "sim/curvature.h"
+#include "sim/shapes.h"
+#include "sim/weathering.h"
+
+namespace rockbake {
+namespace {
+
+Preset cube(int cube_voxels, int grid_voxels, double radius_voxels) {
+  Preset p;
+  p.name = "bench";
+  const double h = 0.1;
+  p.grid.size = {grid_voxels * h, grid_voxels * h, grid_voxels * h};
+  p.grid.resolution = grid_voxels;
+  p.grid.ground = false;
+  p.shape.kind = BoxShape{{cube_voxels * h, cube_voxels * h, cube_voxels * h}};
+  p.shape.center = Vec3d{grid_voxels * h / 2, grid_voxels * h / 2, (grid_voxels - cube_voxels) * h / 2};
+  BubbleBand band;
+  band.bubble.kind = BubbleSpec::Kind::Sphere;
+  band.bubble.extents = {radius_voxels * h, 0, 0};
+  p.bubbles = {band};
+  p.response = {ResponseParams::Kind::Threshold, 0.5, {}};
+  p.rockfall.mode = RockfallMode::Off;
+  p.stop.cycles = 1000000;
+  return p;
+}
+
+// A 96³ cube after 20 cycles, and its exposed voxels.
+struct WeatheredRock {
+  VoxelRock rock;
+  std::vector<std::array<int, 3>> exposed;
+};
+
+const WeatheredRock& weatheredCube() {
+  static const WeatheredRock weathered = [] {
+    const Preset p = cube(96, 96, 6.0);
+    WeatheringSimulation sim(buildInitialRock(p), p);
+    for (int i = 0; i < 20; ++i) sim.step();
+    WeatheredRock w{sim.release(), {}};
+    const GridLayout& g = w.rock.layout;
+    const auto air = [&](int x, int y, int z) {
+      return !g.contains(x, y, z) || w.rock.material[g.index(x, y, z)] == Material::Air;
+    };
+    for (int z = 0; z < g.nz; ++z)
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x)
+          if (w.rock.material[g.index(x, y, z)] == Material::Rock &&
+              (air(x - 1, y, z) || air(x + 1, y, z) || air(x, y - 1, z) || air(x, y + 1, z) || air(x, y, z - 1) ||
+               air(x, y, z + 1)))
+            w.exposed.push_back({x, y, z});
+    return w;
+  }();
+  return weathered;
+}
+
+void BM_AlphaNaive(benchmark::State& state) {
+  const WeatheredRock& w = weatheredCube();
+  const Bubble bubble = makeSphereBubble(6.0);
+  for (auto _ : state) {
+    long total = 0;
+    for (const auto& v : w.exposed) total += naiveCountAir(w.rock, bubble, v[0], v[1], v[2]);
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
+}
+
+void BM_AlphaRows(benchmark::State& state) {
+  const WeatheredRock& w = weatheredCube();
+  const Bubble bubble = makeSphereBubble(6.0);
+  const AirField field(w.rock, bubble.reach);
+  const auto bound = field.bind(bubble);
+  for (const auto& v : w.exposed)
+    if (field.countAir(bound, v[0], v[1], v[2]) != naiveCountAir(w.rock, bubble, v[0], v[1], v[2])) {
+      std::cerr << "bit-row count differs from the naive loop\n";
+      std::abort();
+    }
+  for (auto _ : state) {
+    long total = 0;
+    for (const auto& v : w.exposed) total += field.countAir(bound, v[0], v[1], v[2]);
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
+  state.counters["exposed"] = double(w.exposed.size());
+}
+
+// Times cycles of a simulation started fresh for each batch of iterations.
+void timeCycles(benchmark::State& state, const Preset& p) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(1)));
+  const VoxelRock initial = buildInitialRock(p);
+  WeatheringSimulation sim(initial, p);
+  for (int i = 0; i < 5; ++i) sim.step();  // past the first, atypical cycles
+  std::size_t exposed = 0;
+  for (auto _ : state) exposed = sim.step().exposed;
+  state.counters["exposed"] = double(exposed);
+  state.counters["grid_cells"] = double(initial.layout.cellCount());
+}
+
+void BM_CycleWithDebris(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(1)));
+  const int n = int(state.range(0));
+  Preset p = cube(n, n, 6.0);
+  p.grid.ground = true;
+  p.shape.center = Vec3d{n * 0.05, n * 0.05, 0.0};
+  p.response = {ResponseParams::Kind::Power, 1.0, {}};
+  p.bubbles[0].cavernous = 0.5;
+  p.rockfall.mode = RockfallMode::Drop;
+  p.colluvium = {0.5, 35.0, 0.02};
+  WeatheringSimulation sim(buildInitialRock(p), p);
+  for (int i = 0; i < 5; ++i) sim.step();
+  double curvature = 0, colluvium = 0, rockfall = 0;
+  for (auto _ : state) {
+    const CycleStats c = sim.step();
+    curvature += c.curvature_seconds, colluvium += c.colluvium_seconds, rockfall += c.rockfall_seconds;
+  }
+  const double total = curvature + colluvium + rockfall;
+  state.counters["curvature_share"] = curvature / total;
+  state.counters["colluvium_share"] = colluvium / total;
+  state.counters["rockfall_share"] = rockfall / total;
+  state.counters["rockfall_ms"] = 1000.0 * rockfall / double(state.iterations());
+}
+
+void BM_Cycle(benchmark::State& state) {
+  timeCycles(state, cube(int(state.range(0)), int(state.range(0)), 6.0));
+}
+void BM_CycleFixedRock(benchmark::State& state) {
+  timeCycles(state, cube(32, int(state.range(0)), 6.0));
+}
+
+BENCHMARK(BM_AlphaNaive)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlphaRows)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Cycle)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CycleWithDebris)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CycleFixedRock)
+    ->Args({64, 1})
+    ->Args({128, 1})
+    ->Args({256, 1})
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace rockbake
+
+BENCHMARK_MAIN();

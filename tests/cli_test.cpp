@@ -1,0 +1,171 @@
+// The command line end to end, with the real executable (SPEC §6).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using test::readBytes;
+using test::runRockbake;
+using test::TempDir;
+using test::writeText;
+
+std::string presetPath(const std::string& name) {
+  return (test::sourceDir() / "presets" / name).string();
+}
+
+const char* kSmallPreset = R"(rockbake: 1
+name: small
+seed: 3
+grid: {size: [2.0, 2.0, 2.0], resolution: 24}
+shape:
+  box: {size: [1.5, 1.5, 1.5]}
+bubbles:
+  - up_to: 1.0
+    bubble: {sphere: {radius: 0.3}}
+    spheroidal: 1.0
+    cavernous: 0.2
+time: 0.5
+)";
+
+TEST(Cli, VersionAndHelpExitZero) {
+  const auto version = runRockbake({"--version"});
+  EXPECT_EQ(version.exit_status, 0);
+  EXPECT_NE(version.output.find("rockbake "), std::string::npos);
+  const auto help = runRockbake({"bake", "--help"});
+  EXPECT_EQ(help.exit_status, 0);
+  for (const char* flag : {"--threads", "--seed", "--set", "--resolution", "--no-mesh", "--no-render", "--out"})
+    EXPECT_NE(help.output.find(flag), std::string::npos) << flag;
+}
+
+TEST(Cli, BadArgumentsExitTwo) {
+  EXPECT_EQ(runRockbake({}).exit_status, 2);
+  EXPECT_EQ(runRockbake({"bake"}).exit_status, 2);
+  EXPECT_EQ(runRockbake({"bake", "/nonexistent/preset.yaml"}).exit_status, 2);
+  EXPECT_EQ(runRockbake({"bake", presetPath("goblin.yaml"), "--threads", "0"}).exit_status, 2);
+  EXPECT_EQ(runRockbake({"bake", presetPath("goblin.yaml"), "--frobnicate"}).exit_status, 2);
+}
+
+TEST(Cli, BakeWritesTheVdbAndStats) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  const auto out = dir.path() / "out";
+  const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-mesh"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "small" / "rock.vdb"));
+  const auto stats = nlohmann::json::parse(readBytes(out / "small" / "stats.json"));
+  // h = 2 / 24, time 0.5 → ceil(6) = 6 cycles.
+  ASSERT_EQ(stats["cycles"].size(), 6u);
+  std::size_t previous_rock = std::size_t(-1);
+  for (const auto& c : stats["cycles"]) {
+    for (const char* key : {"cycle", "time", "rock", "exposed", "decimated", "colluvium", "fallen", "removed"})
+      EXPECT_TRUE(c.contains(key)) << key;
+    EXPECT_LE(c["rock"].get<std::size_t>(), previous_rock);
+    previous_rock = c["rock"].get<std::size_t>();
+  }
+  EXPECT_NEAR(stats["cycles"].back()["time"].get<double>(), 0.5, 1e-9);
+  for (const char* stage : {"load", "shape", "simulate"}) EXPECT_GE(stats["stages"][stage].get<double>(), 0.0);
+  EXPECT_EQ(stats["preset"]["name"], "small");
+  EXPECT_EQ(stats["preset"]["grid"]["resolution"], 24);
+  // Nothing but the outputs: no temporary files left behind.
+  for (const auto& entry : fs::directory_iterator(out / "small"))
+    EXPECT_TRUE(entry.path().filename() == "rock.vdb" || entry.path().filename() == "stats.json") << entry.path();
+}
+
+TEST(Cli, OverridesReachTheSimulation) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  const auto out = dir.path() / "out";
+  const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--resolution",
+                                   "16", "--seed", "99", "--set", "cycles=3", "--set", "bubbles.0.cavernous=0.7"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  const auto stats = nlohmann::json::parse(readBytes(out / "small" / "stats.json"));
+  EXPECT_EQ(stats["cycles"].size(), 3u);
+  EXPECT_EQ(stats["preset"]["grid"]["resolution"], 16);
+  EXPECT_EQ(stats["preset"]["seed"], 99);
+  EXPECT_EQ(stats["preset"]["bubbles"][0]["cavernous"], 0.7);
+}
+
+// SPEC §2.10: same preset and seed → byte-identical outputs at any thread count.
+TEST(Cli, RockVdbIsByteIdenticalAcrossThreadCountsAndRuns) {
+  TempDir dir;
+  // The goblin exercises noise, two bubble bands, a collection and the image shape.
+  const std::vector<std::string> common = {
+      "bake", presetPath("goblin.yaml"), "--resolution", "48", "--set", "time=0.6", "--no-mesh"};
+  std::vector<std::string> outputs;
+  for (const auto& [name, threads] :
+       std::vector<std::pair<std::string, std::string>>{{"one", "1"}, {"two", "2"}, {"again", "2"}}) {
+    auto args = common;
+    args.insert(args.end(), {"-o", (dir.path() / name).string(), "--threads", threads});
+    const auto result = runRockbake(args);
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+    outputs.push_back(readBytes(dir.path() / name / "goblin" / "rock.vdb"));
+  }
+  ASSERT_GT(outputs[0].size(), 1000u);
+  EXPECT_TRUE(outputs[0] == outputs[1]) << "1 vs 2 threads differ";
+  EXPECT_TRUE(outputs[1] == outputs[2]) << "two runs differ";
+}
+
+struct BadPreset {
+  const char* label;
+  std::string yaml;
+  std::string expect_location;  // "file:line:col" suffix after the file name
+  std::string expect_key;       // key path in the message ("" for syntax errors)
+};
+
+TEST(Cli, BadPresetsExitTwoWithLocationAndWriteNothing) {
+  const std::vector<BadPreset> cases = {
+      {"malformed YAML", "rockbake: 1\nname: bad\ngrid: {size: [1, 2, 3}\n", ":3:", ""},
+      {"wrong type", std::string(kSmallPreset) + "colluvium: {yield: lots}\n", ":13:", "colluvium.yield"},
+      {"unknown key", std::string(kSmallPreset) + "respnse: {power: 2}\n", ":13:1", "respnse"},
+      {"out of range", std::string(kSmallPreset) + "colluvium: {yield: 1.5}\n", ":13:", "colluvium.yield"},
+      {"missing PNG", "rockbake: 1\nname: bad\nshape:\n  image: {path: nowhere.png, height: 1.0}\ntime: 1\n",
+       ":4:", "shape.image.path"},
+  };
+  for (const auto& c : cases) {
+    TempDir dir;
+    const auto preset = dir.path() / "bad.yaml";
+    writeText(preset, c.yaml);
+    const auto out = dir.path() / "out";
+    const auto result = runRockbake({"bake", preset.string(), "-o", out.string()});
+    EXPECT_EQ(result.exit_status, 2) << c.label << "\n" << result.output;
+    EXPECT_NE(result.output.find(preset.string() + c.expect_location), std::string::npos) << c.label << "\n"
+                                                                                          << result.output;
+    EXPECT_NE(result.output.find(c.expect_key), std::string::npos) << c.label << "\n" << result.output;
+    EXPECT_FALSE(fs::exists(out)) << c.label;
+  }
+  // The unknown key gets a suggestion.
+  TempDir dir;
+  writeText(dir.path() / "bad.yaml", std::string(kSmallPreset) + "respnse: {power: 2}\n");
+  const auto result = runRockbake({"bake", (dir.path() / "bad.yaml").string(), "-o", (dir.path() / "out").string()});
+  EXPECT_NE(result.output.find("did you mean 'response'"), std::string::npos) << result.output;
+}
+
+TEST(Cli, ABadPresetAmongGoodOnesBakesNothing) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  writeText(dir.path() / "bad.yaml", std::string(kSmallPreset) + "extra_key: 1\n");
+  const auto out = dir.path() / "out";
+  const auto result = runRockbake(
+      {"bake", (dir.path() / "small.yaml").string(), (dir.path() / "bad.yaml").string(), "-o", out.string()});
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, EveryShippedPresetIsValid) {
+  for (const auto& entry : fs::directory_iterator(test::sourceDir() / "presets")) {
+    if (entry.path().extension() != ".yaml") continue;
+    TempDir dir;
+    // A coarse, short bake: validation and the whole path, not the look.
+    const auto result = runRockbake({"bake", entry.path().string(), "-o", dir.path().string(), "--resolution", "24",
+                                     "--set", "time=0.1", "--no-mesh"});
+    EXPECT_EQ(result.exit_status, 0) << entry.path() << "\n" << result.output;
+  }
+}
+
+}  // namespace
+}  // namespace rockbake

@@ -1,0 +1,135 @@
+#include "test_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace rockbake::test {
+
+Preset cubePreset(double cube, int resolution, double bubble_radius) {
+  Preset p;
+  p.name = "cube";
+  p.seed = 1;
+  p.grid.size = {cube, cube, cube};
+  p.grid.resolution = resolution;
+  p.grid.ground = false;
+  p.shape.kind = BoxShape{{cube, cube, cube}};
+  BubbleBand band;
+  band.up_to = 1.0;
+  band.bubble.kind = BubbleSpec::Kind::Sphere;
+  band.bubble.extents = {bubble_radius, 0, 0};
+  band.spheroidal = 1.0;
+  band.cavernous = 0.0;
+  p.bubbles = {band};
+  p.rockfall.mode = RockfallMode::Off;
+  p.colluvium.yield = 0.0;
+  p.stop.cycles = 1;
+  return p;
+}
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  path_ = std::filesystem::temp_directory_path() /
+          ("rockbake-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  std::filesystem::remove_all(path_);
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+namespace {
+std::string shellQuote(const std::string& s) {
+  std::string quoted = "'";
+  for (char c : s) quoted += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+}  // namespace
+
+CommandResult runRockbake(const std::vector<std::string>& args) {
+  std::string command = shellQuote(ROCKBAKE_EXECUTABLE);
+  for (const auto& a : args) {
+    command += ' ';
+    command += shellQuote(a);
+  }
+  command += " 2>&1";
+  CommandResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  std::array<char, 4096> buffer;
+  std::size_t n;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::filesystem::path sourceDir() {
+  return ROCKBAKE_SOURCE_DIR;
+}
+
+void writeText(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+std::string readBytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+std::vector<Vec3d> surfaceVoxelCentres(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  const auto isRock = [&](int x, int y, int z) {
+    return g.contains(x, y, z) && rock.material[g.index(x, y, z)] == Material::Rock;
+  };
+  std::vector<Vec3d> centres;
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (isRock(x, y, z) && !(isRock(x - 1, y, z) && isRock(x + 1, y, z) && isRock(x, y - 1, z) &&
+                                 isRock(x, y + 1, z) && isRock(x, y, z - 1) && isRock(x, y, z + 1)))
+          centres.push_back(g.center(x, y, z));
+  return centres;
+}
+
+Vec3d rockCentroid(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  Vec3d sum{0, 0, 0};
+  double n = 0;
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (rock.material[g.index(x, y, z)] == Material::Rock) {
+          const Vec3d c = g.center(x, y, z);
+          for (int a = 0; a < 3; ++a) sum[a] += c[a];
+          n += 1;
+        }
+  return {sum[0] / n, sum[1] / n, sum[2] / n};
+}
+
+double surfaceDistanceSpread(const VoxelRock& rock) {
+  const Vec3d c = rockCentroid(rock);
+  std::vector<double> d;
+  for (const auto& p : surfaceVoxelCentres(rock)) d.push_back(std::hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]));
+  double mean = 0;
+  for (double v : d) mean += v;
+  mean /= double(d.size());
+  double var = 0;
+  for (double v : d) var += (v - mean) * (v - mean);
+  return std::sqrt(var / double(d.size())) / mean;
+}
+
+}  // namespace rockbake::test

@@ -1,0 +1,50 @@
+// Small helpers shared by the tests: in-memory presets, temporary folders,
+// running the real rockbake executable, shape measurements.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "preset/preset.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake::test {
+
+// A free-floating (ground off) cube of `cube` world units in a domain of the
+// same size, resolution `resolution`, one sphere bubble of `bubble_radius`
+// world units, spheroidal only, linear response, uniform durability 1,
+// no rockfall and no colluvium: weathering alone.
+Preset cubePreset(double cube, int resolution, double bubble_radius);
+
+// A fresh, empty folder under the system temp folder, removed on destruction.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct CommandResult {
+  int exit_status = -1;
+  std::string output;  // stdout and stderr together
+};
+// Runs the built rockbake executable with `args` (shell-quoted here).
+CommandResult runRockbake(const std::vector<std::string>& args);
+
+std::filesystem::path sourceDir();
+void writeText(const std::filesystem::path& file, const std::string& text);
+std::string readBytes(const std::filesystem::path& file);
+
+// Rock voxels with at least one face neighbour that is not rock.
+std::vector<Vec3d> surfaceVoxelCentres(const VoxelRock& rock);
+Vec3d rockCentroid(const VoxelRock& rock);
+// Coefficient of variation of the surface voxels' distances from the centroid.
+double surfaceDistanceSpread(const VoxelRock& rock);
+
+}  // namespace rockbake::test
