@@ -161,7 +161,7 @@ TEST(Cli, EveryShippedPresetIsValid) {
     if (entry.path().extension() != ".yaml") continue;
     TempDir dir;
     // A coarse, short bake: validation and the whole path, not the look.
-    const auto result = runRockbake({"bake", entry.path().string(), "-o", dir.path().string(), "--resolution", "24",
+    const auto result = runRockbake({"bake", entry.path().string(), "-o", dir.path().string(), "--resolution", "40",
                                      "--set", "time=0.1", "--no-mesh"});
     EXPECT_EQ(result.exit_status, 0) << entry.path() << "\n" << result.output;
   }

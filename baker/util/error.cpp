@@ -1,19 +1,19 @@
 #include "util/error.h"
 
+#include <fmt/format.h>
+
 namespace rockbake {
 namespace {
 
 std::string formatMessage(const SourceLocation& where, const std::string& key_path, const std::string& problem,
                           const std::string& hint) {
   std::string message = where.file;
-  if (where.line > 0) {
-    message += ":" + std::to_string(where.line);
-    if (where.column > 0) message += ":" + std::to_string(where.column);
-  }
+  if (where.line > 0) message += fmt::format(":{}", where.line);
+  if (where.line > 0 && where.column > 0) message += fmt::format(":{}", where.column);
   if (!message.empty()) message += ": ";
-  if (!key_path.empty()) message += key_path + ": ";
+  if (!key_path.empty()) message += fmt::format("{}: ", key_path);
   message += problem;
-  if (!hint.empty()) message += " (" + hint + ")";
+  if (!hint.empty()) message += fmt::format(" ({})", hint);
   return message;
 }
 

@@ -1,0 +1,645 @@
+// Preset loading: parse (yaml-cpp) → apply --set overrides → validate into
+// plain data. Every read goes through a Field that knows its key path and
+// source position, so every error can say where it is.
+#include "preset/load_preset.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "sim/voxel_rock.h"
+#include "util/error.h"
+
+namespace rockbake {
+namespace {
+
+// ---- where values came from ----
+
+struct Source {
+  std::string file;
+  // Key paths replaced on the command line, with the argument that did it
+  // ("--set a.b=1", "--seed 7").
+  std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string joinKeys(const std::vector<std::string>& keys) {
+  std::string out;
+  for (const auto& k : keys) out += (out.empty() ? "" : ", ") + k;
+  return out;
+}
+
+std::string describe(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Null:
+      return "nothing (null)";
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    default:
+      return "nothing";
+  }
+}
+
+std::string formatNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// A node of the preset with its key path: typed, checked reads.
+class Field {
+ public:
+  Field(YAML::Node node, std::string path, const Source& source, YAML::Mark parent_mark = YAML::Mark::null_mark())
+      : node_(std::move(node)), path_(std::move(path)), source_(&source), parent_mark_(parent_mark) {}
+
+  const std::string& path() const { return path_; }
+  bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
+  bool isMap() const { return node_.IsMap(); }
+  bool isSequence() const { return node_.IsSequence(); }
+
+  [[noreturn]] void fail(const std::string& problem, const std::string& hint = {}) const {
+    throw InputError(location(), path_, problem, hint);
+  }
+
+  Field at(const std::string& key) const {
+    return Field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
+  }
+  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+
+  // Requires a map whose keys are all in `allowed`.
+  void expectMap(const std::vector<std::string>& allowed) const {
+    if (!node_.IsMap()) fail("expected a map (key: value, ...), found " + describe(node_));
+    for (const auto& entry : node_) {
+      const std::string key = entry.first.as<std::string>();
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      std::string best;
+      std::size_t best_distance = std::numeric_limits<std::size_t>::max();
+      for (const auto& candidate : allowed)
+        if (const std::size_t d = editDistance(key, candidate); d < best_distance) best_distance = d, best = candidate;
+      Field bad(entry.first, join(key), *source_, markOrParent());
+      if (best_distance <= std::max<std::size_t>(2, key.size() / 3))
+        bad.fail("unknown key '" + key + "'; did you mean '" + best + "'?", "valid keys here: " + joinKeys(allowed));
+      bad.fail("unknown key '" + key + "'", "valid keys here: " + joinKeys(allowed));
+    }
+  }
+
+  // Exactly one of `kinds` must be present; returns it. Others may be allowed beside it.
+  std::string oneOf(const std::vector<std::string>& kinds, const std::vector<std::string>& also_allowed = {}) const {
+    std::vector<std::string> allowed = kinds;
+    allowed.insert(allowed.end(), also_allowed.begin(), also_allowed.end());
+    expectMap(allowed);
+    std::vector<std::string> present;
+    for (const auto& k : kinds)
+      if (node_[k].IsDefined()) present.push_back(k);
+    if (present.size() != 1)
+      fail(present.empty() ? "needs one of: " + joinKeys(kinds)
+                           : "has " + joinKeys(present) + "; give exactly one of: " + joinKeys(kinds));
+    return present.front();
+  }
+
+  std::size_t size() const {
+    if (!node_.IsSequence()) fail("expected a list, found " + describe(node_));
+    return node_.size();
+  }
+  Field item(std::size_t i) const { return Field(node_[i], path_ + "." + std::to_string(i), *source_, markOrParent()); }
+
+  double number() const {
+    if (!node_.IsScalar()) fail("expected a number, found " + describe(node_));
+    try {
+      const double v = node_.as<double>();
+      if (!std::isfinite(v)) fail("expected a finite number, found " + describe(node_));
+      return v;
+    } catch (const YAML::Exception&) {
+      fail("expected a number, found " + describe(node_));
+    }
+  }
+  double numberIn(double lo, double hi, bool lo_open = false, bool hi_open = false) const {
+    const double v = number();
+    if ((lo_open ? v <= lo : v < lo) || (hi_open ? v >= hi : v > hi))
+      fail("must be in " + std::string(lo_open ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
+           (hi_open ? ")" : "]") + ", found " + formatNumber(v));
+    return v;
+  }
+  double positive() const {
+    const double v = number();
+    if (v <= 0) fail("must be greater than 0, found " + formatNumber(v));
+    return v;
+  }
+  long long integer(long long lo, long long hi) const {
+    if (!node_.IsScalar()) fail("expected a whole number, found " + describe(node_));
+    long long v = 0;
+    try {
+      v = node_.as<long long>();
+    } catch (const YAML::Exception&) {
+      fail("expected a whole number, found " + describe(node_));
+    }
+    if (v < lo || v > hi)
+      fail("must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " +
+           std::to_string(v));
+    return v;
+  }
+  std::uint64_t unsigned64() const {
+    if (!node_.IsScalar() || node_.Scalar().empty() || node_.Scalar()[0] == '-')
+      fail("expected a whole number >= 0, found " + describe(node_));
+    try {
+      return node_.as<std::uint64_t>();
+    } catch (const YAML::Exception&) {
+      fail("expected a whole number >= 0, found " + describe(node_));
+    }
+  }
+  bool boolean() const {
+    if (!node_.IsScalar()) fail("expected true or false, found " + describe(node_));
+    try {
+      return node_.as<bool>();
+    } catch (const YAML::Exception&) {
+      fail("expected true or false, found " + describe(node_));
+    }
+  }
+  std::string string() const {
+    if (!node_.IsScalar()) fail("expected text, found " + describe(node_));
+    return node_.Scalar();
+  }
+  std::string choice(const std::vector<std::string>& options) const {
+    const std::string v = string();
+    if (std::find(options.begin(), options.end(), v) == options.end())
+      fail("'" + v + "' is not one of: " + joinKeys(options));
+    return v;
+  }
+  Vec3d positiveVec3() const {
+    if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
+    return {item(0).positive(), item(1).positive(), item(2).positive()};
+  }
+  Vec3d vec3() const {
+    if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
+    return {item(0).number(), item(1).number(), item(2).number()};
+  }
+
+ private:
+  std::string join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  YAML::Mark markOrParent() const {
+    return (node_.IsDefined() && !node_.Mark().is_null()) ? node_.Mark() : parent_mark_;
+  }
+  SourceLocation location() const {
+    // A value that came from --set is located there, not in the file.
+    for (const auto& [path, argument] : source_->overrides)
+      if (path_ == path || path_.rfind(path + ".", 0) == 0) return {argument, 0, 0};
+    const YAML::Mark mark = markOrParent();
+    if (mark.is_null()) return {source_->file, 0, 0};
+    return {source_->file, mark.line + 1, mark.column + 1};
+  }
+
+  YAML::Node node_;
+  std::string path_;
+  const Source* source_;
+  YAML::Mark parent_mark_;
+};
+
+// ---- --set ----
+
+void applyOverride(YAML::Node& root, const std::string& argument, Source& source) {
+  const auto bad = [&](const std::string& problem, const std::string& hint = {}) {
+    throw InputError({"--set"}, "", "'" + argument + "': " + problem, hint);
+  };
+  const std::size_t equals = argument.find('=');
+  if (equals == std::string::npos || equals == 0)
+    bad("expected key.path=VALUE", "for example --set colluvium.yield=0.3 or --set bubbles.0.spheroidal=0.5");
+  const std::string path = argument.substr(0, equals);
+  YAML::Node value;
+  try {
+    value = YAML::Load(argument.substr(equals + 1));
+  } catch (const YAML::Exception& e) {
+    bad("the value is not valid YAML: " + e.msg);
+  }
+  std::vector<std::string> keys;
+  std::stringstream stream(path);
+  for (std::string key; std::getline(stream, key, '.');) {
+    if (key.empty()) bad("the key path has an empty part");
+    keys.push_back(key);
+  }
+  if (keys.empty()) bad("the key path is empty");
+
+  YAML::Node node;
+  node.reset(root);
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string& key = keys[i];
+    const bool last = i + 1 == keys.size();
+    YAML::Node next;
+    if (node.IsSequence()) {
+      std::size_t index = 0;
+      try {
+        index = std::stoul(key);
+      } catch (const std::exception&) {
+        bad("'" + key + "' must be a list index at that point");
+      }
+      if (index >= node.size()) bad("index " + key + " is past the end of a list of " + std::to_string(node.size()));
+      if (last) {
+        node[index] = value;
+        break;
+      }
+      next.reset(node[index]);
+    } else {
+      if (!node.IsMap() && !node.IsNull()) bad("'" + key + "' cannot be set inside a value that is not a map");
+      if (last) {
+        node[key] = value;
+        break;
+      }
+      if (!node[key].IsDefined() || node[key].IsNull()) node[key] = YAML::Node(YAML::NodeType::Map);
+      next.reset(node[key]);
+    }
+    node.reset(next);
+  }
+  // `time` and `cycles` are alternatives: setting one replaces the other.
+  if (keys.size() == 1 && (keys[0] == "time" || keys[0] == "cycles"))
+    root.remove(keys[0] == "time" ? "cycles" : "time");
+  source.overrides.emplace_back(path, "--set " + argument);
+}
+
+// ---- sections ----
+
+BubbleSpec readBubble(const Field& f) {
+  BubbleSpec bubble;
+  const std::string kind = f.oneOf({"sphere", "ellipsoid", "box", "collection"});
+  const Field k = f.at(kind);
+  if (kind == "sphere") {
+    k.expectMap({"radius"});
+    bubble.kind = BubbleSpec::Kind::Sphere;
+    bubble.extents = {k.at("radius").positive(), 0, 0};
+  } else if (kind == "ellipsoid") {
+    k.expectMap({"radii"});
+    bubble.kind = BubbleSpec::Kind::Ellipsoid;
+    bubble.extents = k.at("radii").positiveVec3();
+  } else if (kind == "box") {
+    k.expectMap({"half_extents"});
+    bubble.kind = BubbleSpec::Kind::Box;
+    bubble.extents = k.at("half_extents").positiveVec3();
+  } else {
+    bubble.kind = BubbleSpec::Kind::Collection;
+    if (k.size() == 0) k.fail("a collection needs at least one member");
+    for (std::size_t i = 0; i < k.size(); ++i) {
+      const Field m = k.item(i);
+      m.expectMap({"bubble", "weight"});
+      if (!m.has("bubble")) m.fail("a collection member needs a bubble");
+      bubble.members.push_back({readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").positive() : 1.0});
+    }
+  }
+  return bubble;
+}
+
+// Every bubble extent must span at least a voxel and stay affordable.
+void checkBubbleSize(const BubbleSpec& bubble, const Field& f, double h) {
+  constexpr double kMaxVoxels = 48.0;
+  if (bubble.kind == BubbleSpec::Kind::Collection) {
+    for (std::size_t i = 0; i < bubble.members.size(); ++i)
+      checkBubbleSize(bubble.members[i].bubble, f.at("collection").item(i).at("bubble"), h);
+    return;
+  }
+  const int axes = bubble.kind == BubbleSpec::Kind::Sphere ? 1 : 3;
+  for (int a = 0; a < axes; ++a) {
+    const double voxels = bubble.extents[std::size_t(a)] / h;
+    if (voxels < 1.0)
+      f.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) + " is smaller than one voxel (" +
+                 formatNumber(h) + " at this resolution)",
+             "make the bubble larger or raise grid.resolution");
+    if (voxels > kMaxVoxels)
+      f.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) + " spans " +
+                 formatNumber(std::round(voxels)) + " voxels; at most " + formatNumber(kMaxVoxels) + " are allowed",
+             "make the bubble smaller or lower grid.resolution");
+  }
+}
+
+std::vector<std::array<double, 2>> readPoints(const Field& f) {
+  std::vector<std::array<double, 2>> points;
+  const std::size_t n = f.size();
+  if (n == 0) f.fail("needs at least one [altitude, durability] point");
+  for (std::size_t i = 0; i < n; ++i) {
+    const Field p = f.item(i);
+    if (p.size() != 2) p.fail("expected [altitude, durability]");
+    const double a = p.item(0).numberIn(0.0, 1.0);
+    const double d = p.item(1).positive();
+    if (!points.empty() && a <= points.back()[0])
+      p.item(0).fail("altitudes must increase along the list (" + formatNumber(a) + " follows " +
+                     formatNumber(points.back()[0]) + ")");
+    points.push_back({a, d});
+  }
+  return points;
+}
+
+// Reads points and noise; `keys` are every key allowed in the map.
+DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) {
+  f.expectMap(keys);
+  DurabilityGraph graph;
+  if (f.has("points")) graph.points = readPoints(f.at("points"));
+  if (f.has("noise")) {
+    const Field n = f.at("noise");
+    const std::size_t segments = graph.points.size() - 1;
+    if (n.size() != segments)
+      n.fail("needs one entry per segment: " + std::to_string(segments) + " for " +
+                 std::to_string(graph.points.size()) + " points, found " + std::to_string(n.size()),
+             "use null for a segment without noise");
+    for (std::size_t i = 0; i < segments; ++i) {
+      const Field s = n.item(i);
+      if (!s.defined()) {
+        graph.noise.push_back(std::nullopt);
+        continue;
+      }
+      s.expectMap({"amplitude", "period", "octaves"});
+      NoiseParams noise;
+      if (s.has("amplitude")) noise.amplitude = s.at("amplitude").numberIn(0.0, 1e6);
+      if (s.has("period")) noise.period = s.at("period").positive();
+      if (s.has("octaves")) noise.octaves = int(s.at("octaves").integer(1, 8));
+      graph.noise.push_back(noise);
+    }
+  }
+  return graph;
+}
+
+void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir) {
+  const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"}, {"center"});
+  const Field k = f.at(kind);
+  if (kind == "box") {
+    k.expectMap({"size"});
+    p.shape.kind = BoxShape{k.at("size").positiveVec3()};
+  } else if (kind == "cylinder") {
+    k.expectMap({"radius", "height"});
+    p.shape.kind = CylinderShape{k.at("radius").positive(), k.at("height").positive()};
+  } else if (kind == "sphere") {
+    k.expectMap({"radius"});
+    p.shape.kind = SphereShape{k.at("radius").positive()};
+  } else if (kind == "inside_corner") {
+    k.expectMap({"size", "wall"});
+    InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").positive()};
+    if (corner.wall >= std::min(corner.size[0], corner.size[1]))
+      k.at("wall").fail("must be thinner than the corner's footprint (" + formatNumber(corner.size[0]) + " × " +
+                        formatNumber(corner.size[1]) + ")");
+    p.shape.kind = corner;
+  } else if (kind == "image") {
+    k.expectMap({"path", "mode", "height"});
+    ImageShape image;
+    const std::filesystem::path given = k.at("path").string();
+    image.path = std::filesystem::absolute(given.is_absolute() ? given : base_dir / given).lexically_normal();
+    if (!std::filesystem::is_regular_file(image.path))
+      k.at("path").fail("no image file at " + image.path.string(), "paths are relative to the preset's folder");
+    image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
+                     ? ImageMode::Revolve
+                     : ImageMode::Extrude;
+    image.height = k.at("height").positive();
+    p.shape.kind = image;
+  } else {
+    k.fail("mesh blockouts are not supported by this version of rockbake",
+           "use box, cylinder, sphere, inside_corner or image");
+  }
+  if (f.has("center")) p.shape.center = f.at("center").vec3();
+}
+
+Preset validate(const YAML::Node& root_node, const Source& source, const std::filesystem::path& file) {
+  const Field root(root_node, "", source);
+  root.expectMap({"rockbake", "name", "seed", "extends", "grid", "shape", "durability", "bubbles", "response",
+                  "rockfall", "colluvium", "time", "cycles", "until", "mesh", "bake", "export", "render"});
+  Preset p;
+  p.file = file;
+  if (!root.has("rockbake")) root.fail("missing 'rockbake: 1' (the schema version)");
+  p.schema = int(root.at("rockbake").integer(1, 1));
+  if (root.has("extends"))
+    root.at("extends").fail("preset inheritance (extends) is not supported by this version",
+                            "copy the base preset's keys into this one");
+
+  if (!root.has("name")) root.fail("missing 'name' (the asset's name, [a-z0-9_-]+)");
+  p.name = root.at("name").string();
+  if (p.name.empty() || !std::all_of(p.name.begin(), p.name.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+      }))
+    root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
+  if (root.has("seed")) p.seed = root.at("seed").unsigned64();
+
+  if (root.has("grid")) {
+    const Field g = root.at("grid");
+    g.expectMap({"size", "resolution", "ground"});
+    if (g.has("size")) p.grid.size = g.at("size").positiveVec3();
+    if (g.has("resolution")) p.grid.resolution = int(g.at("resolution").integer(8, 2048));
+    if (g.has("ground")) p.grid.ground = g.at("ground").boolean();
+  }
+  const double h = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / p.grid.resolution;
+
+  if (!root.has("shape")) root.fail("missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}");
+  readShape(root.at("shape"), p, file.parent_path());
+
+  if (root.has("durability")) {
+    const Field d = root.at("durability");
+    p.durability.graph = readGraph(d, {"points", "noise", "keyframes"});
+    if (d.has("keyframes")) {
+      const Field ks = d.at("keyframes");
+      for (std::size_t i = 0; i < ks.size(); ++i) {
+        const Field k = ks.item(i);
+        DurabilityKeyframe keyframe;
+        keyframe.graph = readGraph(k, {"at", "points", "noise"});
+        if (!k.has("at")) k.fail("a keyframe needs 'at' (the simulation time it takes effect)");
+        if (!k.has("points")) k.fail("a keyframe needs 'points' (the graph it switches to)");
+        keyframe.at = k.at("at").numberIn(0.0, 1e9);
+        if (!p.durability.keyframes.empty() && keyframe.at < p.durability.keyframes.back().at)
+          k.at("at").fail("keyframes must be in time order");
+        p.durability.keyframes.push_back(keyframe);
+      }
+    }
+  }
+
+  if (root.has("bubbles")) {
+    const Field bands = root.at("bubbles");
+    if (bands.size() == 0) bands.fail("needs at least one band");
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      const Field b = bands.item(i);
+      b.expectMap({"up_to", "bubble", "spheroidal", "cavernous"});
+      BubbleBand band;
+      if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
+      band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
+      if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
+        b.at("up_to").fail("bands go bottom to top: up_to must increase");
+      if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
+      band.bubble = readBubble(b.at("bubble"));
+      checkBubbleSize(band.bubble, b.at("bubble"), h);
+      if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
+      if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
+      p.bubbles.push_back(band);
+    }
+    if (p.bubbles.back().up_to != 1.0)
+      bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
+  } else {
+    // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default.
+    BubbleBand band;
+    band.bubble.kind = BubbleSpec::Kind::Sphere;
+    band.bubble.extents = {std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / 16.0, 0, 0};
+    checkBubbleSize(band.bubble, root.at("grid"), h);
+    p.bubbles = {band};
+  }
+
+  if (root.has("response")) {
+    const Field r = root.at("response");
+    const std::string kind = r.oneOf({"power", "threshold", "curve"});
+    if (kind == "power") {
+      p.response = {ResponseParams::Kind::Power, r.at("power").positive(), {}};
+    } else if (kind == "threshold") {
+      p.response = {ResponseParams::Kind::Threshold, r.at("threshold").numberIn(0.0, 1.0, false, true), {}};
+    } else {
+      const Field c = r.at("curve");
+      p.response.kind = ResponseParams::Kind::Curve;
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        const Field pt = c.item(i);
+        if (pt.size() != 2) pt.fail("expected [x, y]");
+        const double x = pt.item(0).numberIn(0.0, 1.0), y = pt.item(1).numberIn(0.0, 1.0);
+        if (!p.response.curve.empty() && x <= p.response.curve.back()[0])
+          pt.item(0).fail("x must increase along the curve");
+        p.response.curve.push_back({x, y});
+      }
+      if (p.response.curve.size() < 2 || p.response.curve.front()[0] != 0.0 || p.response.curve.back()[0] != 1.0)
+        c.fail("the curve must start at x = 0 and end at x = 1");
+    }
+  }
+
+  if (root.has("rockfall")) {
+    const Field r = root.at("rockfall");
+    r.expectMap({"mode"});
+    if (r.has("mode")) {
+      const std::string mode = r.at("mode").choice({"drop", "crumble", "off"});
+      p.rockfall.mode = mode == "drop"      ? RockfallMode::Drop
+                        : mode == "crumble" ? RockfallMode::Crumble
+                                            : RockfallMode::Off;
+    }
+  }
+  if (root.has("colluvium")) {
+    const Field c = root.at("colluvium");
+    c.expectMap({"yield", "talus_angle", "removal"});
+    if (c.has("yield")) p.colluvium.yield = c.at("yield").numberIn(0.0, 1.0);
+    if (c.has("talus_angle")) p.colluvium.talus_angle = c.at("talus_angle").numberIn(0.0, 90.0, true, true);
+    if (c.has("removal")) p.colluvium.removal = c.at("removal").numberIn(0.0, 1.0);
+  }
+
+  if (root.has("time") == root.has("cycles"))
+    root.fail(root.has("time") ? "give either 'time' or 'cycles', not both" : "missing 'time' (or 'cycles')",
+              "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution");
+  if (root.has("time")) p.stop.time = root.at("time").positive();
+  if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, 1000000));
+  if (root.has("until")) {
+    const Field u = root.at("until");
+    u.expectMap({"rock_volume_fraction"});
+    if (u.has("rock_volume_fraction"))
+      p.stop.rock_volume_fraction = u.at("rock_volume_fraction").numberIn(0.0, 1.0, true, true);
+  }
+
+  if (root.has("mesh")) {
+    const Field m = root.at("mesh");
+    m.expectMap({"smoothing", "subdivision", "lods"});
+    if (m.has("smoothing")) p.mesh.smoothing = m.at("smoothing").numberIn(0.0, 4.0);
+    if (m.has("subdivision")) p.mesh.subdivision = int(m.at("subdivision").integer(0, 3));
+    if (m.has("lods")) {
+      const Field l = m.at("lods");
+      for (std::size_t i = 0; i < l.size(); ++i) {
+        const double ratio = l.item(i).numberIn(0.0, 1.0, true, true);
+        if (!p.mesh.lods.empty() && ratio >= p.mesh.lods.back()) l.item(i).fail("LOD ratios must decrease");
+        p.mesh.lods.push_back(ratio);
+      }
+    }
+  }
+  if (root.has("bake")) {
+    const Field b = root.at("bake");
+    b.expectMap({"palette"});
+    if (b.has("palette")) {
+      const std::string palette = b.at("palette").choice({"natural", "debug", "curvature"});
+      p.bake.palette = palette == "natural" ? Palette::Natural
+                       : palette == "debug" ? Palette::Debug
+                                            : Palette::Curvature;
+    }
+  }
+  if (root.has("export")) {
+    const Field e = root.at("export");
+    p.exports.clear();
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const std::string format = e.item(i).choice({"ply", "obj", "glb", "vdb"});
+      if (std::find(p.exports.begin(), p.exports.end(), format) != p.exports.end())
+        e.item(i).fail("'" + format + "' is listed twice");
+      p.exports.push_back(format);
+    }
+  }
+  if (root.has("render")) {
+    const Field r = root.at("render");
+    r.expectMap({"template", "width", "height", "turntable"});
+    if (r.has("template")) p.render.template_name = r.at("template").string();
+    if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
+    if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
+    if (r.has("turntable")) {
+      const Field t = r.at("turntable");
+      t.expectMap({"frames"});
+      if (t.has("frames")) p.render.turntable_frames = int(t.at("frames").integer(0, 360));
+    }
+  }
+
+  // Refuse a grid this machine cannot hold before anything is allocated.
+  const GridLayout layout = computeGridLayout(p);
+  const std::uint64_t needed = estimateSimulationBytes(layout);
+  const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+  if (needed > physical / 10 * 6) {
+    const Field where = root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
+    where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
+                   " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine has " +
+                   std::to_string(physical >> 20) + " MiB",
+               "lower grid.resolution (or --resolution)");
+  }
+  return p;
+}
+
+}  // namespace
+
+Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
+  Source source{file.string(), {}};
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw InputError({source.file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1},
+                     "", "malformed YAML: " + e.msg, "check the indentation and brackets there");
+  }
+  if (!root.IsMap()) throw InputError({source.file, 1, 1}, "", "a preset must be a YAML map (key: value, ...)");
+  for (const auto& argument : overrides.sets) applyOverride(root, argument, source);
+  if (overrides.seed) {
+    root["seed"] = *overrides.seed;
+    source.overrides.emplace_back("seed", "--seed " + std::to_string(*overrides.seed));
+  }
+  if (overrides.resolution) {
+    if (!root["grid"].IsDefined() || root["grid"].IsNull()) root["grid"] = YAML::Node(YAML::NodeType::Map);
+    if (root["grid"].IsMap()) root["grid"]["resolution"] = *overrides.resolution;
+    source.overrides.emplace_back("grid.resolution", "--resolution " + std::to_string(*overrides.resolution));
+  }
+  return validate(root, source, std::filesystem::absolute(file));
+}
+
+Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError({file.string()}, "", "cannot read the preset file", "check the path");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parsePreset(text.str(), file, overrides);
+}
+
+}  // namespace rockbake

@@ -1,0 +1,135 @@
+#include "preset/preset_json.h"
+
+#include <nlohmann/json.hpp>
+
+namespace rockbake {
+namespace {
+
+using nlohmann::json;
+
+json bubbleToJson(const BubbleSpec& b) {
+  switch (b.kind) {
+    case BubbleSpec::Kind::Sphere:
+      return {{"sphere", {{"radius", b.extents[0]}}}};
+    case BubbleSpec::Kind::Ellipsoid:
+      return {{"ellipsoid", {{"radii", b.extents}}}};
+    case BubbleSpec::Kind::Box:
+      return {{"box", {{"half_extents", b.extents}}}};
+    case BubbleSpec::Kind::Collection: {
+      json members = json::array();
+      for (const auto& m : b.members) members.push_back({{"bubble", bubbleToJson(m.bubble)}, {"weight", m.weight}});
+      return {{"collection", members}};
+    }
+  }
+  return nullptr;
+}
+
+json graphToJson(const DurabilityGraph& g) {
+  json out = {{"points", g.points}};
+  json noise = json::array();
+  for (const auto& n : g.noise)
+    noise.push_back(n ? json{{"amplitude", n->amplitude}, {"period", n->period}, {"octaves", n->octaves}}
+                      : json(nullptr));
+  out["noise"] = noise;
+  return out;
+}
+
+json shapeToJson(const ShapeParams& shape) {
+  struct Visitor {
+    json operator()(const BoxShape& b) const { return {{"box", {{"size", b.size}}}}; }
+    json operator()(const CylinderShape& c) const {
+      return {{"cylinder", {{"radius", c.radius}, {"height", c.height}}}};
+    }
+    json operator()(const SphereShape& s) const { return {{"sphere", {{"radius", s.radius}}}}; }
+    json operator()(const InsideCornerShape& c) const {
+      return {{"inside_corner", {{"size", c.size}, {"wall", c.wall}}}};
+    }
+    json operator()(const ImageShape& i) const {
+      return {{"image",
+               {{"path", i.path.string()},
+                {"mode", i.mode == ImageMode::Revolve ? "revolve" : "extrude"},
+                {"height", i.height}}}};
+    }
+  };
+  json out = std::visit(Visitor{}, shape.kind);
+  out["center"] = shape.center ? json(*shape.center) : json(nullptr);
+  return out;
+}
+
+const char* paletteName(Palette p) {
+  switch (p) {
+    case Palette::Natural:
+      return "natural";
+    case Palette::Debug:
+      return "debug";
+    case Palette::Curvature:
+      return "curvature";
+  }
+  return "natural";
+}
+
+const char* rockfallName(RockfallMode m) {
+  switch (m) {
+    case RockfallMode::Drop:
+      return "drop";
+    case RockfallMode::Crumble:
+      return "crumble";
+    case RockfallMode::Off:
+      return "off";
+  }
+  return "drop";
+}
+
+}  // namespace
+
+json presetToJson(const Preset& p) {
+  json out;
+  out["rockbake"] = p.schema;
+  out["name"] = p.name;
+  out["seed"] = p.seed;
+  out["grid"] = {{"size", p.grid.size}, {"resolution", p.grid.resolution}, {"ground", p.grid.ground}};
+  out["shape"] = shapeToJson(p.shape);
+  json durability = graphToJson(p.durability.graph);
+  json keyframes = json::array();
+  for (const auto& k : p.durability.keyframes) {
+    json kf = graphToJson(k.graph);
+    kf["at"] = k.at;
+    keyframes.push_back(kf);
+  }
+  durability["keyframes"] = keyframes;
+  out["durability"] = durability;
+  json bands = json::array();
+  for (const auto& b : p.bubbles)
+    bands.push_back({{"up_to", b.up_to},
+                     {"bubble", bubbleToJson(b.bubble)},
+                     {"spheroidal", b.spheroidal},
+                     {"cavernous", b.cavernous}});
+  out["bubbles"] = bands;
+  switch (p.response.kind) {
+    case ResponseParams::Kind::Power:
+      out["response"] = {{"power", p.response.value}};
+      break;
+    case ResponseParams::Kind::Threshold:
+      out["response"] = {{"threshold", p.response.value}};
+      break;
+    case ResponseParams::Kind::Curve:
+      out["response"] = {{"curve", p.response.curve}};
+      break;
+  }
+  out["rockfall"] = {{"mode", rockfallName(p.rockfall.mode)}};
+  out["colluvium"] = {
+      {"yield", p.colluvium.yield}, {"talus_angle", p.colluvium.talus_angle}, {"removal", p.colluvium.removal}};
+  if (p.stop.time) out["time"] = *p.stop.time;
+  if (p.stop.cycles) out["cycles"] = *p.stop.cycles;
+  if (p.stop.rock_volume_fraction) out["until"] = {{"rock_volume_fraction", *p.stop.rock_volume_fraction}};
+  out["mesh"] = {{"smoothing", p.mesh.smoothing}, {"subdivision", p.mesh.subdivision}, {"lods", p.mesh.lods}};
+  out["bake"] = {{"palette", paletteName(p.bake.palette)}};
+  out["export"] = p.exports;
+  out["render"] = {{"template", p.render.template_name},
+                   {"width", p.render.width},
+                   {"height", p.render.height},
+                   {"turntable", {{"frames", p.render.turntable_frames}}}};
+  return out;
+}
+
+}  // namespace rockbake
