@@ -356,11 +356,11 @@ DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) 
   if (f.has("noise")) {
     const Field n = f.at("noise");
     const std::size_t segments = graph.points.size() - 1;
-    if (n.size() != segments)
+    if (n.size() != segments && n.size() != 0)  // [] means no noise anywhere
       n.fail("needs one entry per segment: " + std::to_string(segments) + " for " +
                  std::to_string(graph.points.size()) + " points, found " + std::to_string(n.size()),
              "use null for a segment without noise");
-    for (std::size_t i = 0; i < segments; ++i) {
+    for (std::size_t i = 0; i < n.size(); ++i) {
       const Field s = n.item(i);
       if (!s.defined()) {
         graph.noise.push_back(std::nullopt);
