@@ -91,23 +91,32 @@ TEST(Cli, OverridesReachTheSimulation) {
 }
 
 // SPEC §2.10: same preset and seed → byte-identical outputs at any thread count.
+// goblin: noise, two bubble bands, a collection, an image; hoodoo-cap: a cap
+// that falls (drop) and colluvium with removal; talus-cliff: crumbling rockfall.
 TEST(Cli, RockVdbIsByteIdenticalAcrossThreadCountsAndRuns) {
-  TempDir dir;
-  // The goblin exercises noise, two bubble bands, a collection and the image shape.
-  const std::vector<std::string> common = {
-      "bake", presetPath("goblin.yaml"), "--resolution", "48", "--set", "time=0.6", "--no-mesh"};
-  std::vector<std::string> outputs;
-  for (const auto& [name, threads] :
-       std::vector<std::pair<std::string, std::string>>{{"one", "1"}, {"two", "2"}, {"again", "2"}}) {
-    auto args = common;
-    args.insert(args.end(), {"-o", (dir.path() / name).string(), "--threads", threads});
-    const auto result = runRockbake(args);
-    ASSERT_EQ(result.exit_status, 0) << result.output;
-    outputs.push_back(readBytes(dir.path() / name / "goblin" / "rock.vdb"));
+  for (const char* preset : {"goblin", "hoodoo-cap", "talus-cliff"}) {
+    TempDir dir;
+    const std::vector<std::string> common = {"bake", presetPath(std::string(preset) + ".yaml"), "--resolution", "48",
+                                             "--no-mesh"};
+    std::vector<std::string> outputs;
+    std::size_t fallen = 0;
+    for (const auto& [name, threads] :
+         std::vector<std::pair<std::string, std::string>>{{"one", "1"}, {"two", "2"}, {"again", "2"}}) {
+      auto args = common;
+      args.insert(args.end(), {"-o", (dir.path() / name).string(), "--threads", threads});
+      const auto result = runRockbake(args);
+      ASSERT_EQ(result.exit_status, 0) << result.output;
+      outputs.push_back(readBytes(dir.path() / name / preset / "rock.vdb"));
+      const auto stats = nlohmann::json::parse(readBytes(dir.path() / name / preset / "stats.json"));
+      for (const auto& c : stats["cycles"]) fallen += c["fallen"].get<std::size_t>();
+    }
+    ASSERT_GT(outputs[0].size(), 1000u) << preset;
+    EXPECT_TRUE(outputs[0] == outputs[1]) << preset << ": 1 vs 2 threads differ";
+    EXPECT_TRUE(outputs[1] == outputs[2]) << preset << ": two runs differ";
+    if (std::string(preset) == "hoodoo-cap") {
+      EXPECT_GT(fallen, 0u) << "the cap should fall";
+    }
   }
-  ASSERT_GT(outputs[0].size(), 1000u);
-  EXPECT_TRUE(outputs[0] == outputs[1]) << "1 vs 2 threads differ";
-  EXPECT_TRUE(outputs[1] == outputs[2]) << "two runs differ";
 }
 
 struct BadPreset {
