@@ -9,14 +9,6 @@
 namespace rockbake {
 namespace {
 
-struct Coord {
-  int x, y, z;
-};
-inline Coord coordOf(const GridLayout& g, std::uint32_t c) {
-  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
-  return {int(c % std::size_t(g.nx)), int((c % layer) / std::size_t(g.nx)), int(c / layer)};
-}
-
 inline bool isAir(const VoxelRock& rock, int x, int y, int z) {
   const GridLayout& g = rock.layout;
   if (z < 0) return !g.ground;
@@ -52,7 +44,7 @@ std::size_t ColluviumModel::deposit(VoxelRock& rock, const std::vector<Cell>& de
   const GridLayout& g = layout_;
   std::size_t created = 0;
   for (Cell c : decimated) {  // in cell order: deterministic
-    const Coord p = coordOf(g, c);
+    const VoxelCoord p = g.coord(c);
     std::int64_t& acc = accumulator_[std::size_t(p.x) + std::size_t(g.nx) * std::size_t(p.y)];
     acc += yield_units_;
     while (acc >= kUnit) {
@@ -77,7 +69,7 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
   // Decide from the state before any removal, so the order does not matter.
   std::vector<Cell> carried;
   for (Cell c : colluvium_cells) {
-    const Coord p = coordOf(g, c);
+    const VoxelCoord p = g.coord(c);
     const bool exposed = isAir(rock, p.x - 1, p.y, p.z) || isAir(rock, p.x + 1, p.y, p.z) ||
                          isAir(rock, p.x, p.y - 1, p.z) || isAir(rock, p.x, p.y + 1, p.z) ||
                          isAir(rock, p.x, p.y, p.z - 1) || isAir(rock, p.x, p.y, p.z + 1);
@@ -89,7 +81,7 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
     rock.material[c] = Material::Air;
     changed.push_back(c);
     vacated.push_back(c);
-    const Coord p = coordOf(g, c);
+    const VoxelCoord p = g.coord(c);
     // What rested on or leaned against it may now slide.
     for (int dz = 0; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
@@ -103,7 +95,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
                             std::vector<Cell>& vacated) {
   const GridLayout& g = layout_;
   // Where the colluvium voxel at p goes next, or -1 when it is stable.
-  const auto nextCell = [&](const Coord& p) -> std::int64_t {
+  const auto nextCell = [&](const VoxelCoord& p) -> std::int64_t {
     if (p.z > 0 && isAir(rock, p.x, p.y, p.z - 1)) return restingCell(rock, p.x, p.y, p.z - 1);  // it falls
     if (!isAir(rock, p.x, p.y, p.z + 1)) return -1;  // covered: held in place
     // Top of a pile: slide to the neighbour column where it rests lowest, if
@@ -115,7 +107,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
       if (!g.contains(x, y, p.z) || !isAir(rock, x, y, p.z)) continue;
       const std::int64_t rest = restingCell(rock, x, y, p.z);
       if (rest < 0) continue;
-      const int rest_z = coordOf(g, Cell(rest)).z;
+      const int rest_z = g.coord(Cell(rest)).z;
       const double distance = (col[0] != 0 && col[1] != 0) ? std::numbers::sqrt2 : 1.0;
       if (double(p.z - rest_z) > talus_slope_ * distance && rest_z < best_rest) {
         best_rest = rest_z;
@@ -134,7 +126,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     // Follow the voxel down-slope to where it rests. The cells it passes
     // through are held only for this moment, so leaving them disturbs nothing.
     Cell at = start;
-    for (std::int64_t next = nextCell(coordOf(g, at)); next >= 0; next = nextCell(coordOf(g, at))) {
+    for (std::int64_t next = nextCell(g.coord(at)); next >= 0; next = nextCell(g.coord(at))) {
       rock.material[std::size_t(next)] = Material::Colluvium;
       rock.material[at] = Material::Air;
       at = Cell(next);
@@ -147,7 +139,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     // it now) and the neighbour columns' voxels at its level and above (a
     // lower column beside them). Lower ones are unaffected: this column is
     // still solid below that level.
-    const Coord p = coordOf(g, start);
+    const VoxelCoord p = g.coord(start);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {

@@ -10,16 +10,6 @@ namespace {
 
 using Cell = std::uint32_t;
 
-constexpr int kFace[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
-
-struct Coord {
-  int x, y, z;
-};
-inline Coord coordOf(const GridLayout& g, Cell c) {
-  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
-  return {int(c % std::size_t(g.nx)), int((c % layer) / std::size_t(g.nx)), int(c / layer)};
-}
-
 inline bool isSolid(Material m) {
   return m != Material::Air;
 }
@@ -57,13 +47,13 @@ bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vecto
     state_[start] = 2;
     neighbours.clear();
     bool touches_ground = false;
-    Coord lo = coordOf(g, start), hi = lo;
+    VoxelCoord lo = g.coord(start), hi = lo;
     for (std::size_t i = 0; i < cluster.size(); ++i) {
-      const Coord p = coordOf(g, cluster[i]);
+      const VoxelCoord p = g.coord(cluster[i]);
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
       if (p.z == 0) touches_ground = true;
-      for (const auto& o : kFace) {
+      for (const auto& o : kFaceNeighbours) {
         if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
         const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
         if (isSolid(rock.material[n])) {
@@ -85,8 +75,8 @@ bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vecto
     // solid cell of the layer z = 0 (it holds them all up), so reaching that
     // layer reaches the ground and, through it, the rest of the layer.
     const auto connectedWithin = [&](int grow) {
-      const Coord box_lo{lo.x - grow, lo.y - grow, lo.z - grow}, box_hi{hi.x + grow, hi.y + grow, hi.z + grow};
-      const auto inBox = [&](const Coord& q) {
+      const VoxelCoord box_lo{lo.x - grow, lo.y - grow, lo.z - grow}, box_hi{hi.x + grow, hi.y + grow, hi.z + grow};
+      const auto inBox = [&](const VoxelCoord& q) {
         return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z && q.x <= box_hi.x &&
                q.y <= box_hi.y && q.z <= box_hi.z;
       };
@@ -103,15 +93,15 @@ bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vecto
       visit(neighbours.front());
       for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
         if (++spent > local_budget_) return false;
-        const Coord p = coordOf(g, queue[head]);
+        const VoxelCoord p = g.coord(queue[head]);
         if (p.z == 0 && !ground_found) {
           ground_found = true;
           if (touches_ground) ++found;
           for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
             for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
         }
-        for (const auto& o : kFace) {
-          const Coord q{p.x + o[0], p.y + o[1], p.z + o[2]};
+        for (const auto& o : kFaceNeighbours) {
+          const VoxelCoord q{p.x + o[0], p.y + o[1], p.z + o[2]};
           if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
         }
       }
@@ -227,8 +217,8 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
     piece_of_floating[s] = id;
     auto& piece = pieces.back();
     for (std::size_t i = 0; i < piece.size(); ++i) {
-      const Coord p = coordOf(g, piece[i]);
-      for (const auto& o : kFace) {
+      const VoxelCoord p = g.coord(piece[i]);
+      for (const auto& o : kFaceNeighbours) {
         if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
         const std::ptrdiff_t f = floatingIndex(Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2])));
         if (f >= 0 && piece_of_floating[std::size_t(f)] < 0) {
@@ -257,7 +247,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
       // cells that sits on something other than the piece itself.
       int drop = std::numeric_limits<int>::max();
       for (Cell c : piece) {
-        const Coord p = coordOf(g, c);
+        const VoxelCoord p = g.coord(c);
         if (p.z > 0 && in_piece[c - layer]) continue;
         int gap = 0, z = p.z - 1;
         while (z >= 0 && !isSolid(rock.material[g.index(p.x, p.y, z)])) ++gap, --z;

@@ -19,6 +19,13 @@ namespace rockbake {
 
 enum class Material : std::uint8_t { Air = 0, Rock = 1, Colluvium = 2 };
 
+struct VoxelCoord {
+  int x, y, z;
+};
+
+// The six face-neighbour offsets.
+inline constexpr int kFaceNeighbours[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+
 struct GridLayout {
   int nx = 0, ny = 0, nz = 0;  // voxels, margin included
   int margin = 0;              // air voxels added beside and above the domain
@@ -30,6 +37,10 @@ struct GridLayout {
   std::size_t cellCount() const { return std::size_t(nx) * std::size_t(ny) * std::size_t(nz); }
   std::size_t index(int x, int y, int z) const {
     return std::size_t(x) + std::size_t(nx) * (std::size_t(y) + std::size_t(ny) * std::size_t(z));
+  }
+  VoxelCoord coord(std::size_t index) const {
+    const std::size_t layer = std::size_t(nx) * std::size_t(ny);
+    return {int(index % std::size_t(nx)), int((index % layer) / std::size_t(nx)), int(index / layer)};
   }
   bool contains(int x, int y, int z) const { return x >= 0 && y >= 0 && z >= 0 && x < nx && y < ny && z < nz; }
   // World coordinates of a voxel centre.

@@ -20,14 +20,6 @@ namespace {
 
 using Cell = std::uint32_t;
 
-struct Coord {
-  int x, y, z;
-};
-inline Coord coordOf(const GridLayout& g, Cell c) {
-  const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
-  return {int(c % std::size_t(g.nx)), int((c % layer) / std::size_t(g.nx)), int(c / layer)};
-}
-
 // The bubble graph bound to one air field: per layer z, which band applies.
 struct BubbleGraph {
   std::vector<int> band_of_layer;
@@ -98,7 +90,7 @@ class TrackedCells {
   void update(const std::vector<Cell>& changed, bool with_neighbours) {
     std::vector<Cell> added;
     bool any_removed = false;
-    const auto reevaluate = [&](Cell c, const Coord& p) {
+    const auto reevaluate = [&](Cell c, const VoxelCoord& p) {
       const std::uint8_t now = member_(p.x, p.y, p.z) ? 1 : 0;
       if (now == flag_[c]) return;
       flag_[c] = now;
@@ -108,10 +100,10 @@ class TrackedCells {
         any_removed = true;
     };
     for (Cell c : changed) {
-      const Coord p = coordOf(g_, c);
+      const VoxelCoord p = g_.coord(c);
       reevaluate(c, p);
       if (!with_neighbours) continue;
-      for (const auto& o : kFaceOffsets)
+      for (const auto& o : kFaceNeighbours)
         if (g_.contains(p.x + o[0], p.y + o[1], p.z + o[2]))
           reevaluate(Cell(g_.index(p.x + o[0], p.y + o[1], p.z + o[2])), {p.x + o[0], p.y + o[1], p.z + o[2]});
     }
@@ -125,7 +117,6 @@ class TrackedCells {
   }
 
  private:
-  static constexpr int kFaceOffsets[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
   GridLayout g_;
   Predicate member_;
   std::vector<std::uint8_t> flag_;
@@ -230,7 +221,7 @@ CycleStats WeatheringSimulation::step() {
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         const Cell c = cells[i];
-                        const Coord p = coordOf(g, c);
+                        const VoxelCoord p = g.coord(c);
                         const std::size_t band = std::size_t(graph.band_of_layer[std::size_t(p.z)]);
                         const double s = exposureAt(field, graph.estimators[band], p.x, p.y, p.z);
                         const double w = graph.spheroidal[band] * applyResponse(preset.response, s) +
@@ -265,7 +256,7 @@ CycleStats WeatheringSimulation::step() {
   if (st.colluviumOn()) {
     // Colluvium that rested on, or leaned against, decimated rock may move.
     for (Cell c : decimated) {
-      const Coord p = coordOf(g, c);
+      const VoxelCoord p = g.coord(c);
       for (int dz = 0; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx)
@@ -303,7 +294,7 @@ CycleStats WeatheringSimulation::step() {
 
   // Bring the air bits and the tracked sets up to date from the changed cells.
   for (Cell c : changed) {
-    const Coord p = coordOf(g, c);
+    const VoxelCoord p = g.coord(c);
     st.field.setAir(p.x, p.y, p.z, rock.material[c] == Material::Air);
   }
   st.exposed.update(changed, true);
