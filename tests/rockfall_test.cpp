@@ -166,6 +166,27 @@ TEST(Rockfall, CrumbleTurnsFallenRockIntoColluviumAndOffLeavesItFloating) {
   EXPECT_FALSE(nothingFloats(floating));
 }
 
+TEST(Rockfall, IsOffWithoutTheGround) {
+  // A free-floating block (ground off) stays where it is: nothing to fall onto.
+  Preset p = test::cubePreset(3.0, 30, 0.3);
+  p.shape.kind = BoxShape{{1.0, 1.0, 1.0}};
+  p.shape.center = Vec3d{1.5, 1.5, 1.0};
+  p.rockfall.mode = RockfallMode::Drop;
+  p.colluvium.yield = 0.5;
+  p.stop.cycles = 3;
+  const VoxelRock start = buildInitialRock(p);
+  const WeatheringResult result = weatherRock(start, p);
+  for (const auto& c : result.cycles) {
+    EXPECT_EQ(c.fallen, 0u);
+    EXPECT_EQ(c.colluvium, 0u);
+  }
+  // With the ground, the same block falls in the first cycle.
+  p.grid.ground = true;
+  const WeatheringResult grounded = weatherRock(buildInitialRock(p), p);
+  EXPECT_GT(grounded.cycles.front().fallen, 900u);
+  EXPECT_TRUE(nothingFloats(grounded.rock));
+}
+
 // A preset that weathers a rock with a soft neck, rockfall and colluvium on.
 Preset neckPreset(std::uint64_t seed, RockfallMode mode) {
   Preset p = test::cubePreset(3.0, 36, 0.25);
