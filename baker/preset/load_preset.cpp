@@ -584,10 +584,12 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   }
   if (root.has("render")) {
     const Field r = root.at("render");
-    r.expectMap({"template", "width", "height", "turntable"});
+    r.expectMap({"template", "width", "height", "quality", "antialias", "turntable"});
     if (r.has("template")) p.render.template_name = r.at("template").string();
     if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
     if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
+    if (r.has("quality")) p.render.quality = int(r.at("quality").integer(0, 11));
+    if (r.has("antialias")) p.render.antialias = r.at("antialias").numberIn(0.0, 3.0);
     if (r.has("turntable")) {
       const Field t = r.at("turntable");
       t.expectMap({"frames"});

@@ -136,6 +136,8 @@ struct RenderParams {
   std::string template_name = "studio";
   int width = 640;
   int height = 480;
+  int quality = 9;           // POV-Ray +Q: 0..11
+  double antialias = 0.3;    // POV-Ray +A threshold; 0 turns antialiasing off
   int turntable_frames = 0;  // 0: no turntable
 };
 

@@ -128,6 +128,8 @@ json presetToJson(const Preset& p) {
   out["render"] = {{"template", p.render.template_name},
                    {"width", p.render.width},
                    {"height", p.render.height},
+                   {"quality", p.render.quality},
+                   {"antialias", p.render.antialias},
                    {"turntable", {{"frames", p.render.turntable_frames}}}};
   return out;
 }
