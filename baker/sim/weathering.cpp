@@ -150,7 +150,10 @@ struct WeatheringSimulation::State {
 
   // Rockfall and colluvium need the ground to fall and pile onto (SPEC §2.1).
   bool rockfallOn() const { return rock.layout.ground && preset.rockfall.mode != RockfallMode::Off; }
-  bool colluviumOn() const { return rock.layout.ground && preset.colluvium.yield > 0.0; }
+  // Colluvium comes from decimated rock (yield) and from crumbled rockfall.
+  bool colluviumOn() const {
+    return rock.layout.ground && (preset.colluvium.yield > 0.0 || preset.rockfall.mode == RockfallMode::Crumble);
+  }
 
   using CellPredicate = std::function<bool(int, int, int)>;
 
