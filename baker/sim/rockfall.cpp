@@ -232,7 +232,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
 
   // Drop the pieces, lowest first, in passes until none moves: a piece that
   // landed on another floating piece falls again once that one has moved.
-  std::vector<std::uint8_t> in_piece(g.cellCount(), 0);
+  std::vector<std::uint8_t>& in_piece = state_;  // all 0 outside the local test
   const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
   for (bool moved = true; moved;) {
     moved = false;
