@@ -15,6 +15,20 @@ find_package(PNG REQUIRED)
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
 
+# OpenSubdiv: its CMake package names static libraries Debian does not ship,
+# so find the header and the shared CPU library directly.
+find_path(OPENSUBDIV_INCLUDE_DIR opensubdiv/version.h REQUIRED)
+find_library(OPENSUBDIV_CPU_LIBRARY osdCPU REQUIRED)
+add_library(OpenSubdiv::osdCPU UNKNOWN IMPORTED)
+set_target_properties(OpenSubdiv::osdCPU PROPERTIES
+  IMPORTED_LOCATION ${OPENSUBDIV_CPU_LIBRARY}
+  INTERFACE_INCLUDE_DIRECTORIES ${OPENSUBDIV_INCLUDE_DIR})
+
+# tinygltf: Debian ships the implementation as a shared library with a CMake
+# config (TinyGLTF::TinyGLTF); meshoptimizer has its own config.
+find_package(TinyGLTF REQUIRED)
+find_package(meshoptimizer REQUIRED)
+
 if(ROCKBAKE_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.h"
 #include "io/vdb_file.h"
+#include "pipeline/bake_meshes.h"
 #include "preset/preset_json.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -83,6 +84,15 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 
   writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
   stages["write_vdb"] = clock.lap();
+
+  if (options.mesh) {
+    const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, summary.asset_dir);
+    stages["mesh_extract"] = meshes.extract_seconds;
+    stages["mesh_subdivide"] = meshes.subdivide_seconds;
+    stages["mesh_attributes"] = meshes.attributes_seconds;
+    stages["export"] = meshes.export_seconds;
+    clock.lap();
+  }
 
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count();
   stages["total"] = summary.seconds + options.load_seconds;

@@ -1,5 +1,6 @@
 // BakeAsset: the recipe. One validated preset in, one asset folder out:
 //   preset ─▶ initial rock ─▶ weathering cycles ─▶ OUT/<name>/{rock.vdb, stats.json}
+//   and, with options.mesh, ─▶ meshes ─▶ the exports (pipeline/bake_meshes.h)
 // Each stage is a function of the previous stage's value; every file is
 // written atomically, so a failed bake never leaves a file that looks complete.
 #pragma once

@@ -1,0 +1,156 @@
+#include "mesh/bake_attributes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+namespace rockbake {
+namespace {
+
+using Rgb = std::array<float, 3>;
+
+Rgb lerp(const Rgb& a, const Rgb& b, float t) {
+  return {a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
+}
+
+// Piecewise-linear ramp through evenly spaced stops, t in [0, 1].
+template <std::size_t N>
+Rgb ramp(const std::array<Rgb, N>& stops, float t) {
+  t = std::clamp(t, 0.0f, 1.0f) * float(N - 1);
+  const std::size_t i = std::min(std::size_t(t), N - 2);
+  return lerp(stops[i], stops[i + 1], t - float(i));
+}
+
+Rgb srgb(float r, float g, float b) {
+  return {srgbToLinear(r), srgbToLinear(g), srgbToLinear(b)};
+}
+
+void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluvium) {
+  const VoxelRock& rock = *src.rock;
+  const GridLayout& g = rock.layout;
+  const std::size_t n = m.positions.size();
+  m.durability.assign(n, 0.0f);
+  m.colluvium.assign(n, is_colluvium ? 1.0f : 0.0f);
+  m.curvature.assign(n, 0.5f);
+  m.altitude.assign(n, 0.0f);
+  const auto material = [&](int x, int y, int z) {
+    if (!g.contains(x, y, z)) return (z < 0 && g.ground) ? Material::Rock : Material::Air;
+    return rock.material[g.index(x, y, z)];
+  };
+  const auto isRock = [&](int x, int y, int z) { return g.contains(x, y, z) && material(x, y, z) == Material::Rock; };
+  const auto exposed = [&](int x, int y, int z) {
+    return isRock(x, y, z) && (material(x - 1, y, z) != Material::Rock || material(x + 1, y, z) != Material::Rock ||
+                               material(x, y - 1, z) != Material::Rock || material(x, y + 1, z) != Material::Rock ||
+                               material(x, y, z - 1) != Material::Rock || material(x, y, z + 1) != Material::Rock);
+  };
+  // The nearest voxel (by centre) satisfying `want` within `radius` voxels of p, or -1.
+  const auto nearest = [&](const std::array<float, 3>& p, int radius, auto&& want) -> long {
+    const double fx = (p[0] - g.origin[0]) / g.h, fy = (p[1] - g.origin[1]) / g.h, fz = (p[2] - g.origin[2]) / g.h;
+    const int cx = int(std::floor(fx)), cy = int(std::floor(fy)), cz = int(std::floor(fz));
+    double best = std::numeric_limits<double>::max();
+    long found = -1;
+    for (int z = cz - radius; z <= cz + radius; ++z)
+      for (int y = cy - radius; y <= cy + radius; ++y)
+        for (int x = cx - radius; x <= cx + radius; ++x) {
+          if (!want(x, y, z)) continue;
+          const double dx = x + 0.5 - fx, dy = y + 0.5 - fy, dz = z + 0.5 - fz;
+          const double d = dx * dx + dy * dy + dz * dz;
+          if (d < best) best = d, found = long(g.index(x, y, z));
+        }
+    return found;
+  };
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto& p = m.positions[v];
+      m.altitude[v] = float(std::clamp(p[2] / g.domain_height, 0.0, 1.0));
+      if (is_colluvium) continue;
+      long i = -1;
+      for (int radius = 1; radius <= 4 && i < 0; radius += 3) i = nearest(p, radius, isRock);
+      if (i >= 0) m.durability[v] = rock.durability[std::size_t(i)];
+      long e = -1;
+      for (int radius = 1; radius <= 4 && e < 0; radius += 3) e = nearest(p, radius, exposed);
+      if (e >= 0) m.curvature[v] = std::clamp((*src.exposure)[std::size_t(e)], 0.0f, 1.0f);
+      // Colluvium coverage: colluvium among the non-rock voxels of the 3×3×3 block.
+      const int cx = int(std::floor((p[0] - g.origin[0]) / g.h)), cy = int(std::floor((p[1] - g.origin[1]) / g.h)),
+                cz = int(std::floor((p[2] - g.origin[2]) / g.h));
+      int open = 0, covered = 0;
+      for (int z = cz - 1; z <= cz + 1; ++z)
+        for (int y = cy - 1; y <= cy + 1; ++y)
+          for (int x = cx - 1; x <= cx + 1; ++x) {
+            const Material mat = material(x, y, z);
+            if (mat == Material::Rock) continue;
+            ++open;
+            covered += mat == Material::Colluvium;
+          }
+      m.colluvium[v] = open > 0 ? float(covered) / float(open) : 0.0f;
+    }
+  });
+}
+
+void paint(SurfaceMesh& m, const PaletteParams& p) {
+  static const std::array<Rgb, 5> kDebug{Rgb{0, 0, 1}, Rgb{0, 1, 1}, Rgb{0, 1, 0}, Rgb{1, 1, 0}, Rgb{1, 0, 0}};
+  static const Rgb kPurple{0.5f, 0.0f, 0.5f};
+  static const std::array<Rgb, 3> kCurvature{Rgb{0.02f, 0.1f, 0.8f}, Rgb{0.8f, 0.8f, 0.8f}, Rgb{0.8f, 0.02f, 0.02f}};
+  // Sandstone, soft to durable (sRGB #E3C9A0, #C98A55, #A0563A, #6E3B2A); colluvium #B49A78.
+  static const std::array<Rgb, 4> kNatural{srgb(0.890f, 0.788f, 0.627f), srgb(0.788f, 0.541f, 0.333f),
+                                           srgb(0.627f, 0.337f, 0.227f), srgb(0.431f, 0.231f, 0.165f)};
+  static const Rgb kSand = srgb(0.706f, 0.604f, 0.471f);
+  const float span = std::max(p.durability_max - p.durability_min, 1e-6f);
+  m.colors.resize(m.positions.size());
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const float t = (m.durability[v] - p.durability_min) / span;
+    const float c = std::clamp(m.colluvium[v], 0.0f, 1.0f);
+    switch (p.palette) {
+      case Palette::Debug:
+        m.colors[v] = lerp(ramp(kDebug, t), kPurple, c);
+        break;
+      case Palette::Curvature:
+        m.colors[v] = ramp(kCurvature, m.curvature[v]);
+        break;
+      case Palette::Natural:
+        m.colors[v] = lerp(ramp(kNatural, t), kSand, c);
+        break;
+    }
+    for (float& x : m.colors[v]) x = std::clamp(x, 0.0f, 1.0f);
+  }
+}
+
+}  // namespace
+
+float srgbToLinear(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources) {
+  sampleSurface(meshes.rock, sources, false);
+  sampleSurface(meshes.colluvium, sources, true);
+  return meshes;
+}
+
+PaletteParams paletteParams(const VoxelRock& rock, Palette palette) {
+  PaletteParams p;
+  p.palette = palette;
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  for (std::size_t i = 0; i < rock.material.size(); ++i)
+    if (rock.material[i] == Material::Rock)
+      lo = std::min(lo, rock.durability[i]), hi = std::max(hi, rock.durability[i]);
+  if (lo <= hi) p.durability_min = lo, p.durability_max = hi;
+  return p;
+}
+
+AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params) {
+  paint(meshes.rock, params);
+  paint(meshes.colluvium, params);
+  return meshes;
+}
+
+}  // namespace rockbake

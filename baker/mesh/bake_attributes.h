@@ -1,0 +1,48 @@
+// Baked per-vertex attributes and palettes (SPEC §3).
+//
+// sampleAttributes reads the final grid at each vertex (before subdivision, so
+// OpenSubdiv refines the values alongside the positions):
+//   durability  D of the nearest rock voxel (0 on the colluvium surface)
+//   colluvium   rock surface: the share of colluvium among the non-rock voxels
+//               of the 3×3×3 block around the vertex, 0..1; colluvium surface: 1
+//   curvature   calibrated exposure s (SPEC §2.3) of the nearest exposed rock
+//               voxel, 0..1, ½ flat; ½ on the colluvium surface
+//   altitude    normalised, 0 at the ground, 1 at the top of grid.size
+// applyPalette turns them into linear RGB colours in [0, 1].
+#pragma once
+
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "preset/preset.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake {
+
+struct AttributeSources {
+  const VoxelRock* rock = nullptr;               // the final grid
+  const std::vector<float>* exposure = nullptr;  // exposureField(rock, preset): s per voxel, 0 off exposed rock
+};
+
+AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources);
+
+struct PaletteParams {
+  Palette palette = Palette::Natural;
+  float durability_min = 0.0f, durability_max = 1.0f;  // range keyed to the palette's ends
+};
+
+// The durability range over the rock voxels of `rock` ([0, 1] if there are none).
+PaletteParams paletteParams(const VoxelRock& rock, Palette palette);
+
+// Fills `colors` (linear RGB) of both surfaces from their attributes:
+//   debug      blue (soft) → cyan → green → yellow → red (durable); purple by colluvium coverage
+//   curvature  blue (concave, s = 0) → light grey (flat, s = ½) → red (convex, s = 1)
+//   natural    sandstone layers keyed by durability, pale buff (soft) → deep
+//              red-brown (durable), blended towards a sandy colluvium colour by coverage
+AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params);
+
+// sRGB transfer function, both ways, on [0, 1].
+float srgbToLinear(float c);
+float linearToSrgb(float c);
+
+}  // namespace rockbake

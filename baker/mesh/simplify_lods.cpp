@@ -1,0 +1,246 @@
+#include "mesh/simplify_lods.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include <meshoptimizer.h>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_invoke.h>
+
+#include "mesh/subdivide.h"
+
+namespace rockbake {
+namespace {
+
+// Collapsing a thin part can leave two coincident triangles of opposite
+// winding glued back to back (each of their edges then has four faces).
+// Removing both restores edge-manifoldness; the surface is pinched there, as
+// the collapse intended.
+void dropSandwiches(std::vector<unsigned int>& indices) {
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> by_key;  // sorted corners → triangles
+  const auto key = [&](std::size_t t) {
+    std::array<std::uint64_t, 3> c{indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+    std::sort(c.begin(), c.end());
+    return (c[0] * 0x9E3779B97F4A7C15ull) ^ (c[1] * 0xC2B2AE3D27D4EB4Full) ^ (c[2] * 0x165667B19E3779F9ull);
+  };
+  const std::size_t n = indices.size() / 3;
+  by_key.reserve(n);
+  for (std::size_t t = 0; t < n; ++t) by_key[key(t)].push_back(t);
+  std::vector<char> drop(n, 0);
+  bool any = false;
+  const auto same = [&](std::size_t a, std::size_t b) {
+    std::array<unsigned int, 3> x{indices[3 * a], indices[3 * a + 1], indices[3 * a + 2]};
+    std::array<unsigned int, 3> y{indices[3 * b], indices[3 * b + 1], indices[3 * b + 2]};
+    std::sort(x.begin(), x.end()), std::sort(y.begin(), y.end());
+    return x == y;
+  };
+  for (const auto& [k, list] : by_key) {
+    if (list.size() < 2) continue;
+    for (std::size_t i = 0; i < list.size(); ++i)
+      for (std::size_t j = i + 1; j < list.size(); ++j)
+        if (!drop[list[i]] && !drop[list[j]] && same(list[i], list[j])) drop[list[i]] = drop[list[j]] = 1, any = true;
+  }
+  if (!any) return;
+  std::size_t w = 0;
+  for (std::size_t t = 0; t < n; ++t)
+    if (!drop[t])
+      for (int k = 0; k < 3; ++k) indices[w++] = indices[3 * t + k];
+  indices.resize(w);
+}
+
+// Undirected edges not used exactly once in each direction.
+std::size_t nonManifoldEdges(const std::vector<unsigned int>& indices) {
+  std::unordered_map<std::uint64_t, int> directed;
+  directed.reserve(indices.size());
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) ++directed[(std::uint64_t(indices[t + k]) << 32) | indices[t + (k + 1) % 3]];
+  std::size_t bad = 0;
+  for (const auto& [e, n] : directed) {
+    const auto back = directed.find((e << 32) | (e >> 32));
+    bad += n != 1 || back == directed.end() || back->second != 1;
+  }
+  return bad;
+}
+
+// Makes an edge-paired triangle soup manifold by splitting pinched vertices.
+// Where an undirected edge carries k faces each way (k > 1: sheets pinched
+// onto one edge), each face is paired with its neighbour around the edge
+// across the solid between the sheets;
+// then the faces around each vertex are grouped into fans joined through those
+// pairs, and every fan after the first gets its own copy of the vertex.
+// Returns, for each vertex of the result beyond `vertex_count`, the vertex it copies.
+std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
+                                       const std::vector<std::array<float, 3>>& positions) {
+  const std::size_t vertex_count = positions.size();
+  const std::size_t corners = indices.size();
+  const auto next = [](std::size_t c) { return c - c % 3 + (c % 3 + 1) % 3; };
+  const auto prev = [](std::size_t c) { return c - c % 3 + (c % 3 + 2) % 3; };
+  // Corner c stands for its half-edge indices[c] → indices[next(c)].
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> half_edges;
+  half_edges.reserve(corners);
+  const auto key = [](std::uint64_t from, std::uint64_t to) { return (from << 32) | to; };
+  for (std::size_t c = 0; c < corners; ++c) half_edges[key(indices[c], indices[next(c)])].push_back(c);
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> twin(corners, kNone);
+  for (const auto& [k, list] : half_edges) {
+    const auto back = half_edges.find((k << 32) | (k >> 32));
+    if (back == half_edges.end() || back->second.size() != list.size()) continue;  // left open
+    if (list.size() == 1) {
+      twin[list[0]] = back->second[0];
+      continue;
+    }
+    if ((k >> 32) > (k & 0xffffffffu)) continue;  // each pinched edge once, from its lower vertex
+    // Sort the faces around the edge by angle; an outgoing face's outward
+    // normal turns towards increasing angle, so the solid between two sheets
+    // lies between it and the face just before it: pair those.
+    const auto& pu = positions[k >> 32];
+    const auto& pw = positions[k & 0xffffffffu];
+    const std::array<double, 3> d0{double(pw[0]) - pu[0], double(pw[1]) - pu[1], double(pw[2]) - pu[2]};
+    const double dl = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
+    if (dl == 0) continue;
+    const std::array<double, 3> d{d0[0] / dl, d0[1] / dl, d0[2] / dl};
+    const auto radial = [&](std::size_t c) {  // the face's third vertex, off the axis
+      const auto& px = positions[indices[prev(c)]];
+      std::array<double, 3> r{double(px[0]) - pu[0], double(px[1]) - pu[1], double(px[2]) - pu[2]};
+      const double along = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
+      for (int a = 0; a < 3; ++a) r[a] -= along * d[a];
+      return r;
+    };
+    std::vector<std::pair<double, std::size_t>> around;  // (angle, corner); in-faces marked by the high bit
+    const std::array<double, 3> e1 = radial(list[0]);
+    const std::array<double, 3> e2{d[1] * e1[2] - d[2] * e1[1], d[2] * e1[0] - d[0] * e1[2],
+                                   d[0] * e1[1] - d[1] * e1[0]};
+    const auto angle = [&](std::size_t c) {
+      const auto r = radial(c);
+      return std::atan2(r[0] * e2[0] + r[1] * e2[1] + r[2] * e2[2], r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2]);
+    };
+    constexpr std::size_t kIn = std::size_t(1) << 63;
+    for (std::size_t c : list) around.push_back({angle(c), c});
+    for (std::size_t c : back->second) around.push_back({angle(c), c | kIn});
+    std::sort(around.begin(), around.end());
+    const std::size_t n = around.size();
+    bool alternating = true;
+    for (std::size_t i = 0; i < n; ++i)
+      alternating &= ((around[i].second & kIn) != 0) != ((around[(i + 1) % n].second & kIn) != 0);
+    if (!alternating) continue;  // sheets cross: leave it
+    for (std::size_t i = 0; i < n; ++i) {
+      if (around[i].second & kIn) continue;
+      const std::size_t out = around[i].second, in = around[(i + n - 1) % n].second & ~kIn;
+      twin[out] = in, twin[in] = out;
+    }
+  }
+  // Union-find over corners: corner c and the corner across prev(c)'s edge share a vertex and a fan.
+  std::vector<std::size_t> parent(corners);
+  for (std::size_t c = 0; c < corners; ++c) parent[c] = c;
+  const auto find = [&](std::size_t c) {
+    while (parent[c] != c) c = parent[c] = parent[parent[c]];
+    return c;
+  };
+  for (std::size_t c = 0; c < corners; ++c) {
+    const std::size_t t = twin[prev(c)];
+    if (t != kNone) parent[find(c)] = find(t);
+  }
+  std::vector<std::size_t> fan_of_vertex(vertex_count, kNone);  // the root that keeps the vertex
+  std::unordered_map<std::size_t, unsigned int> copy_of_root;
+  std::vector<unsigned int> copies;
+  for (std::size_t c = 0; c < corners; ++c) {
+    const unsigned int v = indices[c];
+    const std::size_t root = find(c);
+    if (fan_of_vertex[v] == kNone) fan_of_vertex[v] = root;
+    if (fan_of_vertex[v] == root) continue;
+    auto [it, fresh] = copy_of_root.try_emplace(root, unsigned(vertex_count + copies.size()));
+    if (fresh) copies.push_back(v);
+    indices[c] = it->second;
+  }
+  return copies;
+}
+
+// `m` simplified to about `target_triangles` (at least 4); `ratio` only for the log.
+SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio) {
+  if (m.triangles.empty()) return m;
+  const std::size_t index_count = 3 * m.triangles.size();
+  const std::size_t target = std::max<std::size_t>(4, target_triangles) * 3;
+  std::vector<unsigned int> indices(index_count), simplified;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) indices[3 * t + k] = m.triangles[t][k];
+  // meshoptimizer does not check the link condition: a collapse can glue two
+  // triangles back to back or pinch two sheets onto one edge. Repair both;
+  // where the repair cannot pair the faces of an edge, simplify once more to a
+  // target 1 % lower, and keep the better result.
+  std::vector<unsigned int> copies;
+  std::size_t bad = std::numeric_limits<std::size_t>::max();
+  for (int attempt = 0; attempt < 2 && bad > 0; ++attempt) {
+    const double nudge = attempt == 0 ? 1.0 : 0.99;
+    const std::size_t attempt_target = std::max<std::size_t>(4, std::size_t(double(target / 3) * nudge)) * 3;
+    std::vector<unsigned int> result(index_count);
+    float error = 0.0f;
+    result.resize(meshopt_simplify(result.data(), indices.data(), index_count, &m.positions[0][0], m.positions.size(),
+                                   sizeof(std::array<float, 3>), attempt_target, 1.0f, meshopt_SimplifyLockBorder,
+                                   &error));
+    dropSandwiches(result);
+    std::vector<unsigned int> result_copies = splitPinches(result, m.positions);
+    const std::size_t result_bad = nonManifoldEdges(result);
+    spdlog::debug("LOD {} of {}: {} → {} triangles, error {:.2g}, {} pinched vertices split, {} non-manifold edges",
+                  ratio, m.name, m.triangles.size(), result.size() / 3, error, result_copies.size(), result_bad);
+    if (result_bad < bad) bad = result_bad, simplified = std::move(result), copies = std::move(result_copies);
+  }
+  if (bad > 0)
+    spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name, bad);
+  const auto source = [&](std::size_t i) {
+    return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
+  };
+
+  // Keep only the vertices still referenced, in their original order (copies last).
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> remap(m.positions.size() + copies.size(), kUnused);
+  for (unsigned int i : simplified) remap[i] = 0;
+  SurfaceMesh out;
+  out.name = m.name;
+  for (std::size_t i = 0; i < remap.size(); ++i) {
+    if (remap[i] == kUnused) continue;
+    remap[i] = std::uint32_t(out.positions.size());
+    const std::size_t s = source(i);
+    out.positions.push_back(m.positions[s]);
+    out.durability.push_back(m.durability[s]);
+    out.colluvium.push_back(m.colluvium[s]);
+    out.curvature.push_back(m.curvature[s]);
+    out.altitude.push_back(m.altitude[s]);
+    if (!m.colors.empty()) out.colors.push_back(m.colors[s]);
+  }
+  out.triangles.reserve(simplified.size() / 3);
+  for (std::size_t t = 0; t < simplified.size(); t += 3)
+    out.triangles.push_back({remap[simplified[t]], remap[simplified[t + 1]], remap[simplified[t + 2]]});
+  computeVertexNormals(out);
+  return out;
+}
+
+}  // namespace
+
+std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params) {
+  // Each LOD is simplified from the previous one when the ratios decrease,
+  // which is cheaper than starting from the full mesh every time; targets stay
+  // shares of the full mesh. The two surfaces simplify in parallel.
+  std::vector<AssetMeshes> lods;
+  lods.reserve(params.ratios.size());
+  const AssetMeshes* from = &meshes;
+  double from_ratio = 1.0;
+  const auto target = [](const SurfaceMesh& full, double ratio) {
+    return std::size_t(std::llround(ratio * double(full.triangles.size())));
+  };
+  for (double ratio : params.ratios) {
+    if (ratio >= from_ratio) from = &meshes;
+    AssetMeshes lod;
+    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, target(meshes.rock, ratio), ratio); },
+                         [&] { lod.colluvium = simplify(from->colluvium, target(meshes.colluvium, ratio), ratio); });
+    lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
+    lods.push_back(std::move(lod));
+    from = &lods.back();
+    from_ratio = ratio;
+  }
+  return lods;
+}
+
+}  // namespace rockbake

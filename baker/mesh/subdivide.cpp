@@ -1,0 +1,198 @@
+#include "mesh/subdivide.h"
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+#include <opensubdiv/sdc/crease.h>
+
+namespace rockbake {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+// One vertex's refined data: position and the four primvars.
+struct Primvars {
+  float v[7];
+  void Clear(void* = nullptr) {
+    for (float& x : v) x = 0.0f;
+  }
+  void AddWithWeight(const Primvars& src, float weight) {
+    for (int i = 0; i < 7; ++i) v[i] += weight * src.v[i];
+  }
+};
+
+float distance2(const std::array<float, 3>& a, const std::array<float, 3>& b) {
+  const float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return dx * dx + dy * dy + dz * dz;
+}
+
+void splitQuads(SurfaceMesh& m) {
+  m.triangles.reserve(m.triangles.size() + 2 * m.quads.size());
+  for (const auto& q : m.quads) {
+    if (distance2(m.positions[q[0]], m.positions[q[2]]) <= distance2(m.positions[q[1]], m.positions[q[3]])) {
+      m.triangles.push_back({q[0], q[1], q[2]});
+      m.triangles.push_back({q[0], q[2], q[3]});
+    } else {
+      m.triangles.push_back({q[0], q[1], q[3]});
+      m.triangles.push_back({q[1], q[2], q[3]});
+    }
+  }
+  m.quads.clear();
+}
+
+}  // namespace
+
+std::size_t catmullClarkVertexCount(std::size_t vertices, std::size_t triangles, std::size_t quads, int levels) {
+  std::size_t v = vertices, corners = 3 * triangles + 4 * quads, f = triangles + quads;
+  std::size_t e = corners / 2;
+  for (int l = 0; l < levels; ++l) {
+    const std::size_t v1 = v + e + f, e1 = 2 * e + corners, f1 = corners;
+    v = v1, e = e1, f = f1, corners = 4 * f1;
+  }
+  return v;
+}
+
+void computeVertexNormals(SurfaceMesh& m) {
+  std::vector<std::array<double, 3>> acc(m.positions.size(), {0.0, 0.0, 0.0});
+  for (const auto& t : m.triangles) {
+    const auto& a = m.positions[t[0]];
+    const auto& b = m.positions[t[1]];
+    const auto& c = m.positions[t[2]];
+    const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+    const double w[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    for (auto i : t)
+      for (int k = 0; k < 3; ++k) acc[i][k] += n[k];  // |n| = 2 × area: area-weighted
+  }
+  m.normals.resize(m.positions.size());
+  for (std::size_t i = 0; i < acc.size(); ++i) {
+    const double len = std::sqrt(acc[i][0] * acc[i][0] + acc[i][1] * acc[i][1] + acc[i][2] * acc[i][2]);
+    m.normals[i] = len > 0
+                       ? std::array<float, 3>{float(acc[i][0] / len), float(acc[i][1] / len), float(acc[i][2] / len)}
+                       : std::array<float, 3>{0.0f, 0.0f, 1.0f};
+  }
+}
+
+SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& params) {
+  if (params.levels < 0 || params.levels > 3)
+    throw std::invalid_argument("mesh.subdivision must be 0..3, got " + std::to_string(params.levels));
+  SurfaceMesh out;
+  out.name = mesh.name;
+  if (params.levels == 0 || mesh.positions.empty()) {
+    out.positions = mesh.positions;
+    out.triangles = mesh.triangles;
+    out.quads = mesh.quads;
+    out.durability = mesh.durability;
+    out.colluvium = mesh.colluvium;
+    out.curvature = mesh.curvature;
+    out.altitude = mesh.altitude;
+    splitQuads(out);
+    computeVertexNormals(out);
+    return out;
+  }
+
+  const std::size_t nv = mesh.positions.size();
+  const std::size_t nf = mesh.triangles.size() + mesh.quads.size();
+  std::vector<int> verts_per_face;
+  std::vector<Far::Index> indices;
+  verts_per_face.reserve(nf);
+  indices.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
+  for (const auto& t : mesh.triangles) {
+    verts_per_face.push_back(3);
+    indices.insert(indices.end(), t.begin(), t.end());
+  }
+  for (const auto& q : mesh.quads) {
+    verts_per_face.push_back(4);
+    indices.insert(indices.end(), q.begin(), q.end());
+  }
+  // The ground cap (faces lying on z = 0) meets the walls along an
+  // infinitely sharp crease, so the refined surface keeps a flat cap and a
+  // crisp foot on the ground instead of rounding up off it.
+  std::vector<Far::Index> crease_pairs;
+  {
+    std::vector<char> on_ground(nf, 1);
+    std::size_t corner = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < verts_per_face[f]; ++k) on_ground[f] &= mesh.positions[indices[corner++]][2] == 0.0f;
+    std::unordered_map<std::uint64_t, std::size_t> face_of_half_edge;
+    face_of_half_edge.reserve(indices.size());
+    const auto key = [](std::uint64_t a, std::uint64_t b) { return (a << 32) | b; };
+    corner = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+      const int n = verts_per_face[f];
+      for (int k = 0; k < n; ++k) face_of_half_edge[key(indices[corner + k], indices[corner + (k + 1) % n])] = f;
+      corner += std::size_t(n);
+    }
+    for (const auto& [e, f] : face_of_half_edge) {
+      const std::uint64_t a = e >> 32, b = e & 0xffffffffu;
+      if (a > b) continue;  // each edge once
+      const auto other = face_of_half_edge.find(key(b, a));
+      if (other != face_of_half_edge.end() && on_ground[f] != on_ground[other->second])
+        crease_pairs.insert(crease_pairs.end(), {Far::Index(a), Far::Index(b)});
+    }
+  }
+  const std::vector<float> crease_weights(crease_pairs.size() / 2, Sdc::Crease::SHARPNESS_INFINITE);
+
+  Far::TopologyDescriptor desc;
+  desc.numVertices = int(nv);
+  desc.numFaces = int(nf);
+  desc.numVertsPerFace = verts_per_face.data();
+  desc.vertIndicesPerFace = indices.data();
+  desc.numCreases = int(crease_weights.size());
+  desc.creaseVertexIndexPairs = crease_pairs.data();
+  desc.creaseWeights = crease_weights.data();
+
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
+  if (!refiner) throw std::invalid_argument("OpenSubdiv refused the " + mesh.name + " mesh's topology");
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(params.levels));
+
+  // Primvars of every level, one buffer: level 0 first, each level after the previous.
+  std::vector<Primvars> buffer(std::size_t(refiner->GetNumVerticesTotal()));
+  for (std::size_t i = 0; i < nv; ++i) {
+    const auto& p = mesh.positions[i];
+    buffer[i] = {{p[0], p[1], p[2], mesh.durability.empty() ? 0.0f : mesh.durability[i],
+                  mesh.colluvium.empty() ? 0.0f : mesh.colluvium[i], mesh.curvature.empty() ? 0.5f : mesh.curvature[i],
+                  mesh.altitude.empty() ? 0.0f : mesh.altitude[i]}};
+  }
+  Far::PrimvarRefiner primvars(*refiner);
+  Primvars* src = buffer.data();
+  for (int level = 1; level <= params.levels; ++level) {
+    Primvars* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+    primvars.Interpolate(level, src, dst);
+    src = dst;
+  }
+
+  const Far::TopologyLevel& last = refiner->GetLevel(params.levels);
+  const std::size_t n = std::size_t(last.GetNumVertices());
+  out.positions.resize(n);
+  out.durability.resize(n);
+  out.colluvium.resize(n);
+  out.curvature.resize(n);
+  out.altitude.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* v = src[i].v;
+    out.positions[i] = {v[0], v[1], v[2]};
+    out.durability[i] = v[3], out.colluvium[i] = v[4], out.curvature[i] = v[5], out.altitude[i] = v[6];
+  }
+  out.quads.reserve(std::size_t(last.GetNumFaces()));
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto fv = last.GetFaceVertices(f);
+    if (fv.size() != 4) throw std::logic_error("Catmull-Clark refinement produced a non-quad face");
+    out.quads.push_back({std::uint32_t(fv[0]), std::uint32_t(fv[1]), std::uint32_t(fv[2]), std::uint32_t(fv[3])});
+  }
+  splitQuads(out);
+  computeVertexNormals(out);
+  return out;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,97 @@
+#include "pipeline/bake_meshes.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "io/glb_file.h"
+#include "io/obj_file.h"
+#include "io/ply_file.h"
+#include "mesh/bake_attributes.h"
+#include "mesh/extract_surfaces.h"
+#include "mesh/simplify_lods.h"
+#include "mesh/subdivide.h"
+#include "sim/weathering.h"
+
+namespace rockbake {
+namespace {
+
+double since(std::chrono::steady_clock::time_point& last) {
+  const auto now = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(now - last).count();
+  last = now;
+  return seconds;
+}
+
+bool wants(const Preset& preset, const char* format) {
+  return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
+}
+
+}  // namespace
+
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
+  MeshStageResult r;
+  auto clock = std::chrono::steady_clock::now();
+  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing});
+  r.extract_seconds = since(clock);
+
+  const std::vector<float> exposure = exposureField(rock, preset);
+  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
+  r.attributes_seconds = since(clock);
+
+  const SubdivideParams levels{preset.mesh.subdivision};
+  meshes.rock = subdivideSurface(meshes.rock, levels);
+  meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
+  r.subdivide_seconds = since(clock);
+  meshes.bounds_min = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                       std::numeric_limits<float>::max()};
+  meshes.bounds_max = {std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(),
+                       std::numeric_limits<float>::lowest()};
+  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
+    for (const auto& p : m->positions)
+      for (int a = 0; a < 3; ++a)
+        meshes.bounds_min[a] = std::min(meshes.bounds_min[a], p[a]),
+        meshes.bounds_max[a] = std::max(meshes.bounds_max[a], p[a]);
+  if (meshes.rock.positions.empty() && meshes.colluvium.positions.empty()) meshes.bounds_min = meshes.bounds_max = {};
+
+  meshes = applyPalette(std::move(meshes), paletteParams(rock, preset.bake.palette));
+  r.attributes_seconds += since(clock);
+  spdlog::debug("{}: rock {} vertices, {} triangles; colluvium {} vertices, {} triangles", preset.name,
+                meshes.rock.positions.size(), meshes.rock.triangles.size(), meshes.colluvium.positions.size(),
+                meshes.colluvium.triangles.size());
+
+  const auto export_start = clock;
+
+  const auto logged = [&](const char* what) { spdlog::debug("{}: {} in {:.3f} s", preset.name, what, since(clock)); };
+  if (wants(preset, "ply")) {
+    writePly(meshes.rock, asset_dir / "rock.ply");
+    if (!meshes.colluvium.positions.empty()) {
+      writePly(meshes.colluvium, asset_dir / "colluvium.ply");
+    } else {
+      std::error_code ignored;  // no colluvium: no stale file from an earlier bake either
+      std::filesystem::remove(asset_dir / "colluvium.ply", ignored);
+    }
+    logged("ply");
+  }
+  if (wants(preset, "obj")) {
+    writeObj(meshes, asset_dir / "rock.obj");
+    logged("obj");
+  }
+  if (wants(preset, "glb")) {
+    writeGlb(meshes, asset_dir / "rock.glb");
+    logged("glb");
+    const std::vector<AssetMeshes> lods = simplifyLods(meshes, {preset.mesh.lods});
+    logged("lods");
+    for (std::size_t i = 0; i < lods.size(); ++i)
+      writeGlb(lods[i], asset_dir / ("rock_lod" + std::to_string(i + 1) + ".glb"));
+  }
+  since(clock);
+  r.export_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count();
+  r.meshes = std::move(meshes);
+  return r;
+}
+
+}  // namespace rockbake

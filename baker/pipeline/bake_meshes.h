@@ -1,0 +1,26 @@
+// The mesh stage of the recipe (SPEC §3): final grid ─▶ surfaces ─▶ attributes
+// ─▶ subdivision ─▶ palette ─▶ files in the asset folder, as the preset's
+// `export:` list asks:
+//   ply  rock.ply, colluvium.ply (one surface each; colluvium only if any)
+//   obj  rock.obj + rock.mtl (both surfaces, one object each)
+//   glb  rock.glb (both surfaces, one node each), and rock_lod1.glb, … per mesh.lods ratio
+// (`vdb` is written by the recipe before this stage.) Every file is atomic.
+#pragma once
+
+#include <filesystem>
+
+#include "mesh/surface_mesh.h"
+#include "preset/preset.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake {
+
+struct MeshStageResult {
+  AssetMeshes meshes;  // subdivided, attributed, coloured
+  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, export_seconds = 0;
+};
+
+// Throws std::runtime_error on failure (nothing half-written).
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir);
+
+}  // namespace rockbake
