@@ -11,8 +11,10 @@
 #include <limits>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "io/mesh_reader.h"
 #include "sim/voxel_rock.h"
 #include "util/error.h"
 
@@ -409,8 +411,27 @@ void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir)
     image.height = k.at("height").positive();
     p.shape.kind = image;
   } else {
-    k.fail("mesh blockouts are not supported by this version of rockbake",
-           "use box, cylinder, sphere, inside_corner or image");
+    k.expectMap({"path", "scale"});
+    MeshShape mesh;
+    const std::filesystem::path given = k.at("path").string();
+    mesh.path = std::filesystem::absolute(given.is_absolute() ? given : base_dir / given).lexically_normal();
+    if (!std::filesystem::is_regular_file(mesh.path))
+      k.at("path").fail("no mesh file at " + mesh.path.string(), "paths are relative to the preset's folder");
+    if (k.has("scale")) mesh.scale = k.at("scale").positive();
+    // Read it now, so a broken blockout stops the bake before anything is written.
+    try {
+      const TriangleMesh triangles = readTriangleMesh(mesh.path);
+      const std::vector<OpenEdge> open = findOpenEdges(triangles);
+      if (!open.empty())
+        k.at("path").fail(fmt::format("{} is not closed: {} edges are not shared by exactly two consistently "
+                                      "oriented faces (e.g. vertices {} and {}, used {} times)",
+                                      mesh.path.string(), open.size(), open[0].a + 1, open[0].b + 1, open[0].uses),
+                          "close the holes and make the normals consistent in the modelling package");
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const InputError*>(&e)) throw;
+      k.at("path").fail(e.what());
+    }
+    p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
 }

@@ -45,7 +45,14 @@ struct ImageShape {
   ImageMode mode = ImageMode::Extrude;
   double height;  // extrude: extrusion height; revolve: height of the profile
 };
-using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape>;
+// An artist's closed blockout (OBJ, PLY or STL), voxelized. File coordinates
+// times `scale` are world units; placed like the other shapes by its bounding
+// box (centre in x, y; base at z).
+struct MeshShape {
+  std::filesystem::path path;  // absolute (resolved against the preset's folder)
+  double scale = 1.0;          // world units per file unit, > 0
+};
+using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape, MeshShape>;
 
 struct ShapeParams {
   ShapeKind kind = BoxShape{{2.0, 2.0, 2.0}};

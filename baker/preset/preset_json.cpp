@@ -50,6 +50,7 @@ json shapeToJson(const ShapeParams& shape) {
                 {"mode", i.mode == ImageMode::Revolve ? "revolve" : "extrude"},
                 {"height", i.height}}}};
     }
+    json operator()(const MeshShape& m) const { return {{"mesh", {{"path", m.path.string()}, {"scale", m.scale}}}}; }
   };
   json out = std::visit(Visitor{}, shape.kind);
   out["center"] = shape.center ? json(*shape.center) : json(nullptr);
@@ -125,12 +126,9 @@ json presetToJson(const Preset& p) {
   out["mesh"] = {{"smoothing", p.mesh.smoothing}, {"subdivision", p.mesh.subdivision}, {"lods", p.mesh.lods}};
   out["bake"] = {{"palette", paletteName(p.bake.palette)}};
   out["export"] = p.exports;
-  out["render"] = {{"template", p.render.template_name},
-                   {"width", p.render.width},
-                   {"height", p.render.height},
-                   {"quality", p.render.quality},
-                   {"antialias", p.render.antialias},
-                   {"turntable", {{"frames", p.render.turntable_frames}}}};
+  out["render"] = {{"template", p.render.template_name}, {"width", p.render.width},
+                   {"height", p.render.height},          {"quality", p.render.quality},
+                   {"antialias", p.render.antialias},    {"turntable", {{"frames", p.render.turntable_frames}}}};
   return out;
 }
 

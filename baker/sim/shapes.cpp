@@ -7,8 +7,10 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
+#include "io/mesh_reader.h"
 #include "io/png_image.h"
 #include "sim/durability.h"
+#include "sim/mesh_shape.h"
 #include "util/error.h"
 
 namespace rockbake {
@@ -85,8 +87,31 @@ InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, co
         return white(px, py);
       };
     }
+    InsideTest operator()(const MeshShape&) const { return {}; }  // voxelized as a whole, below
   };
   return std::visit(Visitor{cx, cy, bz, preset}, kind);
+}
+
+// The blockout in world units: scaled, its bounding box centred on (cx, cy)
+// and resting at z = bz.
+TriangleMesh placeMesh(const MeshShape& shape, const Vec3d& center, const Preset& preset) {
+  TriangleMesh mesh;
+  try {
+    mesh = readTriangleMesh(shape.path);
+  } catch (const std::exception& e) {
+    throw InputError({preset.file.string()}, "shape.mesh.path", e.what());
+  }
+  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (auto& p : mesh.positions)
+    for (int a = 0; a < 3; ++a) {
+      p[std::size_t(a)] *= shape.scale;
+      lo[std::size_t(a)] = std::min(lo[std::size_t(a)], p[std::size_t(a)]);
+      hi[std::size_t(a)] = std::max(hi[std::size_t(a)], p[std::size_t(a)]);
+    }
+  const Vec3d shift{center[0] - 0.5 * (lo[0] + hi[0]), center[1] - 0.5 * (lo[1] + hi[1]), center[2] - lo[2]};
+  for (auto& p : mesh.positions)
+    for (int a = 0; a < 3; ++a) p[std::size_t(a)] += shift[std::size_t(a)];
+  return mesh;
 }
 
 }  // namespace
@@ -97,9 +122,16 @@ VoxelRock buildInitialRock(const Preset& preset) {
   const GridLayout& g = rock.layout;
   const Vec3d& domain = preset.grid.size;
   const Vec3d center = preset.shape.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
-  const InsideTest inside = insideTest(preset.shape.kind, center[0], center[1], center[2], preset);
-
   rock.material.assign(g.cellCount(), Material::Air);
+  std::vector<std::uint8_t> mesh_inside;
+  InsideTest inside;
+  if (const auto* blockout = std::get_if<MeshShape>(&preset.shape.kind)) {
+    mesh_inside = voxelizeMesh(placeMesh(*blockout, center, preset), g);
+    inside = [](double, double, double) { return false; };  // unused: the flags decide
+  } else {
+    inside = insideTest(preset.shape.kind, center[0], center[1], center[2], preset);
+  }
+
   rock.integrity.assign(g.cellCount(), 1.f);
   rock.durability.assign(g.cellCount(), 0.f);
 
@@ -108,7 +140,7 @@ VoxelRock buildInitialRock(const Preset& preset) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x) {
         const Vec3d p = g.center(x, y, z);
-        if (!inside(p[0], p[1], p[2])) continue;
+        if (mesh_inside.empty() ? !inside(p[0], p[1], p[2]) : !mesh_inside[g.index(x, y, z)]) continue;
         const bool in_domain = p[0] > 0 && p[1] > 0 && p[0] < domain[0] && p[1] < domain[1] && p[2] < domain[2];
         if (in_domain)
           rock.material[g.index(x, y, z)] = Material::Rock;

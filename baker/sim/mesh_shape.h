@@ -1,0 +1,16 @@
+// Voxelizing a closed blockout (SPEC §2.8, `shape: {mesh}`) with OpenVDB's
+// meshToLevelSet: a voxel is rock when its centre is inside the mesh.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "io/mesh_reader.h"
+#include "sim/voxel_rock.h"
+
+namespace rockbake {
+
+// `mesh` in world units. Returns one flag per cell of `layout` (1 = inside).
+std::vector<std::uint8_t> voxelizeMesh(const TriangleMesh& mesh, const GridLayout& layout);
+
+}  // namespace rockbake

@@ -1,0 +1,166 @@
+// Artists' blockouts as the initial shape (SPEC §2.8, shape: {mesh}).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "io/mesh_reader.h"
+#include "preset/load_preset.h"
+#include "sim/shapes.h"
+#include "test_support.h"
+#include "util/error.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A unit-radius icosphere (subdivided `levels` times), outward-facing.
+TriangleMesh icosphere(int levels) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  TriangleMesh m;
+  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  const auto normalise = [](std::array<double, 3> p) {
+    const double l = std::hypot(p[0], p[1], p[2]);
+    return std::array<double, 3>{p[0] / l, p[1] / l, p[2] / l};
+  };
+  for (auto& p : m.positions) p = normalise(p);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
+    const auto mid = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      if (const auto it = middle.find(key); it != middle.end()) return it->second;
+      const auto& pa = m.positions[a];
+      const auto& pb = m.positions[b];
+      m.positions.push_back(normalise({pa[0] + pb[0], pa[1] + pb[1], pa[2] + pb[2]}));
+      return middle[key] = std::uint32_t(m.positions.size() - 1);
+    };
+    std::vector<std::array<std::uint32_t, 3>> finer;
+    for (const auto& [a, b, c] : m.triangles) {
+      const std::uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+    }
+    m.triangles = finer;
+  }
+  return m;
+}
+
+void writeObj(const fs::path& file, const TriangleMesh& m, std::size_t skip_faces = 0) {
+  std::ofstream out(file);
+  for (const auto& p : m.positions) out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  for (std::size_t i = skip_faces; i < m.triangles.size(); ++i)
+    out << "f " << m.triangles[i][0] + 1 << ' ' << m.triangles[i][1] + 1 << ' ' << m.triangles[i][2] + 1 << '\n';
+}
+
+void writeBinaryStl(const fs::path& file, const TriangleMesh& m) {
+  std::ofstream out(file, std::ios::binary);
+  const std::string header(80, ' ');
+  out.write(header.data(), 80);
+  const std::uint32_t count = std::uint32_t(m.triangles.size());
+  out.write(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& t : m.triangles) {
+    const float normal[3] = {0, 0, 0};
+    out.write(reinterpret_cast<const char*>(normal), 12);
+    for (std::uint32_t v : t) {
+      const float p[3] = {float(m.positions[v][0]), float(m.positions[v][1]), float(m.positions[v][2])};
+      out.write(reinterpret_cast<const char*>(p), 12);
+    }
+    const std::uint16_t attributes = 0;
+    out.write(reinterpret_cast<const char*>(&attributes), 2);
+  }
+}
+
+void writeAsciiPly(const fs::path& file, const TriangleMesh& m) {
+  std::ofstream out(file);
+  out << "ply\nformat ascii 1.0\nelement vertex " << m.positions.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << m.triangles.size()
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : m.positions) out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  for (const auto& t : m.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+}
+
+std::string blockoutPreset(const std::string& mesh_file, double scale) {
+  return "rockbake: 1\nname: blockout\ngrid: {size: [3, 3, 3], resolution: 80}\n"
+         "shape:\n  mesh: {path: " +
+         mesh_file + ", scale: " + std::to_string(scale) +
+         "}\n"
+         "bubbles: [{up_to: 1, bubble: {sphere: {radius: 0.2}}}]\ncycles: 1\n";
+}
+
+TEST(MeshShape, AVoxelizedSphereHasTheAnalyticVolume) {
+  test::TempDir dir;
+  writeObj(dir.path() / "sphere.obj", icosphere(4));
+  test::writeText(dir.path() / "p.yaml", blockoutPreset("sphere.obj", 1.2));
+  const Preset p = loadPreset(dir.path() / "p.yaml");
+  const VoxelRock rock = buildInitialRock(p);
+  const double h = rock.layout.h;
+  const double volume = double(rock.count(Material::Rock)) * h * h * h;
+  const double analytic = 4.0 / 3.0 * std::numbers::pi * std::pow(1.2, 3);
+  EXPECT_NEAR(volume / analytic, 1.0, 0.03) << volume << " vs " << analytic;
+  // Placed like the primitives: centred in x, y and resting on the ground.
+  const Vec3d c = test::rockCentroid(rock);
+  EXPECT_NEAR(c[0], 1.5, h);
+  EXPECT_NEAR(c[1], 1.5, h);
+  EXPECT_NEAR(c[2], 1.2, h);
+}
+
+TEST(MeshShape, ObjPlyAndStlGiveTheSameRock) {
+  test::TempDir dir;
+  const TriangleMesh sphere = icosphere(3);
+  writeObj(dir.path() / "s.obj", sphere);
+  writeBinaryStl(dir.path() / "s.stl", sphere);
+  writeAsciiPly(dir.path() / "s.ply", sphere);
+  std::vector<std::size_t> counts;
+  for (const char* file : {"s.obj", "s.stl", "s.ply"}) {
+    test::writeText(dir.path() / "p.yaml", blockoutPreset(file, 1.0));
+    counts.push_back(buildInitialRock(loadPreset(dir.path() / "p.yaml")).count(Material::Rock));
+  }
+  // The same shape; STL stores floats and the text formats 6 digits, so a
+  // few voxels whose centres sit on the surface may differ.
+  EXPECT_GT(counts[0], 1000u);
+  EXPECT_NEAR(double(counts[1]), double(counts[0]), 1e-3 * double(counts[0]));
+  EXPECT_NEAR(double(counts[2]), double(counts[0]), 1e-3 * double(counts[0]));
+}
+
+TEST(MeshShape, AnOpenOrBrokenMeshIsRefusedWithAMessage) {
+  test::TempDir dir;
+  writeObj(dir.path() / "open.obj", icosphere(2), 3);  // three faces missing
+  test::writeText(dir.path() / "p.yaml", blockoutPreset("open.obj", 1.0));
+  try {
+    loadPreset(dir.path() / "p.yaml");
+    FAIL() << "an open mesh was accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("shape.mesh.path"), std::string::npos) << message;
+    EXPECT_NE(message.find("open.obj is not closed"), std::string::npos) << message;
+    EXPECT_NE(message.find(":5:"), std::string::npos) << message;  // the line of the path in the preset
+  }
+  test::writeText(dir.path() / "garbage.obj", "v 0 0 0\nf 1 2 3\n");
+  test::writeText(dir.path() / "p.yaml", blockoutPreset("garbage.obj", 1.0));
+  try {
+    loadPreset(dir.path() / "p.yaml");
+    FAIL() << "a mesh with bad indices was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("past the 1 vertices"), std::string::npos) << e.what();
+  }
+  // Through the command line: exit 2, nothing written.
+  test::writeText(dir.path() / "p.yaml", blockoutPreset("open.obj", 1.0));
+  const auto result =
+      test::runRockbake({"bake", (dir.path() / "p.yaml").string(), "-o", (dir.path() / "out").string()});
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "out"));
+}
+
+TEST(MeshShape, TheShippedBlockoutIsClosedAndOutwardFacing) {
+  const TriangleMesh boulder = readTriangleMesh(test::sourceDir() / "presets" / "shapes" / "boulder.obj");
+  EXPECT_TRUE(findOpenEdges(boulder).empty());
+  EXPECT_GT(signedVolume(boulder), 0.0);
+}
+
+}  // namespace
+}  // namespace rockbake
