@@ -120,7 +120,7 @@ void BM_MeshExport(benchmark::State& state) {
   m.rock = subdivideSurface(m.rock, {2});
   m.colluvium = subdivideSurface(m.colluvium, {2});
   for (auto _ : state) {
-    m = applyPalette(std::move(m), paletteParams(a.rock, a.preset.bake.palette));
+    m = applyPalette(std::move(m), paletteParams(a.rock, a.preset.bake));
     writePly(m.rock, a.dir / "rock.ply");
     writePly(m.colluvium, a.dir / "colluvium.ply");
     writeObj(m, a.dir / "rock.obj");

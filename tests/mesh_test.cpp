@@ -74,7 +74,7 @@ AssetMeshes attributed(const VoxelRock& rock, const Preset& p, int levels) {
   m = sampleAttributes(std::move(m), {&rock, &exposure});
   m.rock = subdivideSurface(m.rock, {levels});
   m.colluvium = subdivideSurface(m.colluvium, {levels});
-  return applyPalette(std::move(m), paletteParams(rock, p.bake.palette));
+  return applyPalette(std::move(m), paletteParams(rock, p.bake));
 }
 
 const AssetMeshes& bandedMeshes(int levels) {
@@ -261,7 +261,7 @@ TEST(MeshAttributes, RefinedValuesStayWithinTheInputRange) {
   const auto range = [](const std::vector<float>& v) {
     return std::pair{*std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
   };
-  const PaletteParams palette = paletteParams(rock, Palette::Debug);
+  const PaletteParams palette = paletteParams(rock, BakeParams{Palette::Debug, {}, {}});
   for (const SurfaceMesh* base : {&m.rock, &m.colluvium}) {
     ASSERT_EQ(base->durability.size(), base->positions.size());
     const SurfaceMesh s = subdivideSurface(*base, {2});
@@ -341,7 +341,7 @@ TEST(MeshAttributes, CurvaturePaletteRedConvexBlueConcave) {
 
 TEST(MeshAttributes, NaturalPaletteDarkensWithDurability) {
   const AssetMeshes& base = bandedMeshes(0);
-  PaletteParams params = paletteParams(bandedRock(), Palette::Natural);
+  PaletteParams params = paletteParams(bandedRock(), BakeParams{});
   const AssetMeshes m = applyPalette(base, params);
   const auto luminance = [](const std::array<float, 3>& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
   float soft = 0, hard = 0;
@@ -356,6 +356,35 @@ TEST(MeshAttributes, NaturalPaletteDarkensWithDurability) {
   EXPECT_GT(soft / float(n_soft), 2.0f * hard / float(n_hard)) << "pale soft layers, dark durable ones";
   for (const auto& c : m.rock.colors)
     for (float x : c) ASSERT_TRUE(x >= 0.0f && x <= 1.0f);
+}
+
+TEST(MeshAttributes, NaturalPaletteUsesThePresetsLayersAndColluviumColour) {
+  const AssetMeshes& base = bandedMeshes(0);
+  BakeParams bake;
+  PaletteParams range = paletteParams(bandedRock(), bake);
+  // Red for the softest rock, blue for the most durable, green colluvium (all sRGB).
+  bake.layers = {{double(range.durability_min), {1.0, 0.0, 0.0}}, {double(range.durability_max), {0.0, 0.0, 1.0}}};
+  bake.colluvium_color = SrgbColor{0.0, 1.0, 0.0};
+  const PaletteParams params = paletteParams(bandedRock(), bake);
+  const AssetMeshes m = applyPalette(base, params);
+  int soft = 0, hard = 0;
+  for (std::size_t i = 0; i < m.rock.positions.size(); ++i) {
+    if (m.rock.colluvium[i] > 0.0f) continue;
+    const auto& c = m.rock.colors[i];
+    if (m.rock.durability[i] <= params.durability_min + 0.01f) {
+      EXPECT_GT(c[0], 0.95f);
+      EXPECT_LT(c[2], 0.05f);
+      ++soft;
+    }
+    if (m.rock.durability[i] >= params.durability_max - 0.01f) {
+      EXPECT_GT(c[2], 0.95f);
+      EXPECT_LT(c[0], 0.05f);
+      ++hard;
+    }
+  }
+  EXPECT_GT(soft, 0);
+  EXPECT_GT(hard, 0);
+  for (const auto& c : m.colluvium.colors) EXPECT_GT(c[1], 0.95f);
 }
 
 // ---- exports ----

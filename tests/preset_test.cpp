@@ -162,6 +162,27 @@ TEST(Preset, RejectsInconsistentPresets) {
             std::string::npos);
 }
 
+TEST(Preset, PaletteColoursAreSrgbHexOrLists) {
+  const Preset p = parsePreset(
+      "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n"
+      "bake:\n  palette: natural\n  layers:\n    - {durability: 0.5, color: '#E3C9A0'}\n"
+      "    - {durability: 2.0, color: [0.4, 0.2, 0.1]}\n  colluvium_color: '#b49a78'\n",
+      "p.yaml");
+  ASSERT_EQ(p.bake.layers.size(), 2u);
+  EXPECT_NEAR(p.bake.layers[0].color[0], 0xE3 / 255.0, 1e-12);
+  EXPECT_EQ(p.bake.layers[1].color[2], 0.1);
+  EXPECT_NEAR((*p.bake.colluvium_color)[1], 0x9a / 255.0, 1e-12);
+  const std::string head = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n";
+  EXPECT_NE(errorOf(head + "bake: {layers: [{durability: 1, color: 'red'}]}\n").find("'red' is not a colour"),
+            std::string::npos);
+  EXPECT_NE(errorOf(head + "bake: {layers: [{durability: 1, color: [1, 2, 0]}]}\n")
+                .find("bake.layers.0.color.1: must be in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(errorOf(head + "bake: {layers: [{durability: 2, color: '#000000'}, {durability: 1, color: '#ffffff'}]}\n")
+                .find("durability must increase"),
+            std::string::npos);
+}
+
 TEST(Preset, ImagePathsResolveAgainstThePresetsFolder) {
   test::TempDir dir;
   test::writeText(dir.path() / "shapes" / "s.png", "not read here");

@@ -98,6 +98,23 @@ void paint(SurfaceMesh& m, const PaletteParams& p) {
   static const std::array<Rgb, 4> kNatural{srgb(0.890f, 0.788f, 0.627f), srgb(0.788f, 0.541f, 0.333f),
                                            srgb(0.627f, 0.337f, 0.227f), srgb(0.431f, 0.231f, 0.165f)};
   static const Rgb kSand = srgb(0.706f, 0.604f, 0.471f);
+  const Rgb colluvium_color = p.colluvium_color ? srgb(float((*p.colluvium_color)[0]), float((*p.colluvium_color)[1]),
+                                                       float((*p.colluvium_color)[2]))
+                                                : kSand;
+  // The preset's layers, keyed by durability, interpolated in linear light.
+  const auto layerColor = [&p](float d) {
+    const auto& layers = p.layers;
+    const auto linear = [](const PaletteLayer& l) {
+      return srgb(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+    };
+    if (d <= layers.front().durability) return linear(layers.front());
+    for (std::size_t i = 1; i < layers.size(); ++i)
+      if (d <= layers[i].durability) {
+        const float t = float((d - layers[i - 1].durability) / (layers[i].durability - layers[i - 1].durability));
+        return lerp(linear(layers[i - 1]), linear(layers[i]), t);
+      }
+    return linear(layers.back());
+  };
   const float span = std::max(p.durability_max - p.durability_min, 1e-6f);
   m.colors.resize(m.positions.size());
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
@@ -111,7 +128,7 @@ void paint(SurfaceMesh& m, const PaletteParams& p) {
         m.colors[v] = ramp(kCurvature, m.curvature[v]);
         break;
       case Palette::Natural:
-        m.colors[v] = lerp(ramp(kNatural, t), kSand, c);
+        m.colors[v] = lerp(p.layers.empty() ? ramp(kNatural, t) : layerColor(m.durability[v]), colluvium_color, c);
         break;
     }
     for (float& x : m.colors[v]) x = std::clamp(x, 0.0f, 1.0f);
@@ -136,9 +153,11 @@ AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources
   return meshes;
 }
 
-PaletteParams paletteParams(const VoxelRock& rock, Palette palette) {
+PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake) {
   PaletteParams p;
-  p.palette = palette;
+  p.palette = bake.palette;
+  p.layers = bake.layers;
+  p.colluvium_color = bake.colluvium_color;
   float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
   for (std::size_t i = 0; i < rock.material.size(); ++i)
     if (rock.material[i] == Material::Rock)

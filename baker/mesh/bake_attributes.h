@@ -11,6 +11,7 @@
 // applyPalette turns them into linear RGB colours in [0, 1].
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -29,16 +30,21 @@ AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources
 struct PaletteParams {
   Palette palette = Palette::Natural;
   float durability_min = 0.0f, durability_max = 1.0f;  // range keyed to the palette's ends
+  std::vector<PaletteLayer> layers;                    // natural: the preset's layers (sRGB), if any
+  std::optional<SrgbColor> colluvium_color;            // natural: the preset's colluvium colour (sRGB)
 };
 
-// The durability range over the rock voxels of `rock` ([0, 1] if there are none).
-PaletteParams paletteParams(const VoxelRock& rock, Palette palette);
+// The preset's palette with the durability range over the rock voxels of
+// `rock` ([0, 1] if there are none).
+PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake);
 
 // Fills `colors` (linear RGB) of both surfaces from their attributes:
 //   debug      blue (soft) → cyan → green → yellow → red (durable); purple by colluvium coverage
 //   curvature  blue (concave, s = 0) → light grey (flat, s = ½) → red (convex, s = 1)
-//   natural    sandstone layers keyed by durability, pale buff (soft) → deep
-//              red-brown (durable), blended towards a sandy colluvium colour by coverage
+//   natural    the preset's layers (bake.layers: colours at durabilities,
+//              interpolated in linear light), or by default sandstone keyed to
+//              the durability range, pale buff (soft) → deep red-brown (durable);
+//              blended towards the colluvium colour by coverage
 AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params);
 
 // sRGB transfer function, both ways, on [0, 1].

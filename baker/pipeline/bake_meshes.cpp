@@ -57,7 +57,7 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
         meshes.bounds_max[a] = std::max(meshes.bounds_max[a], p[a]);
   if (meshes.rock.positions.empty() && meshes.colluvium.positions.empty()) meshes.bounds_min = meshes.bounds_max = {};
 
-  meshes = applyPalette(std::move(meshes), paletteParams(rock, preset.bake.palette));
+  meshes = applyPalette(std::move(meshes), paletteParams(rock, preset.bake));
   r.attributes_seconds += since(clock);
   spdlog::debug("{}: rock {} vertices, {} triangles; colluvium {} vertices, {} triangles", preset.name,
                 meshes.rock.positions.size(), meshes.rock.triangles.size(), meshes.colluvium.positions.size(),

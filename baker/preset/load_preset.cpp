@@ -282,6 +282,22 @@ void applyOverride(YAML::Node& root, const std::string& argument, Source& source
 
 // ---- sections ----
 
+// An sRGB colour: "#rrggbb" or [r, g, b] with each in [0, 1].
+SrgbColor readColor(const Field& f) {
+  if (f.isSequence()) {
+    if (f.size() != 3) f.fail("expected [r, g, b] (sRGB, each 0..1) or \"#rrggbb\"");
+    return {f.item(0).numberIn(0.0, 1.0), f.item(1).numberIn(0.0, 1.0), f.item(2).numberIn(0.0, 1.0)};
+  }
+  const std::string text = f.string();
+  const bool hex = text.size() == 7 && text[0] == '#' &&
+                   std::all_of(text.begin() + 1, text.end(), [](char c) { return std::isxdigit((unsigned char)c); });
+  if (!hex) f.fail("'" + text + "' is not a colour", "write \"#rrggbb\" (sRGB) or [r, g, b] with each 0..1");
+  SrgbColor rgb;
+  for (int i = 0; i < 3; ++i)
+    rgb[std::size_t(i)] = std::stoi(text.substr(1 + 2 * std::size_t(i), 2), nullptr, 16) / 255.0;
+  return rgb;
+}
+
 BubbleSpec readBubble(const Field& f) {
   BubbleSpec bubble;
   const std::string kind = f.oneOf({"sphere", "ellipsoid", "box", "collection"});
@@ -585,13 +601,26 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   }
   if (root.has("bake")) {
     const Field b = root.at("bake");
-    b.expectMap({"palette"});
+    b.expectMap({"palette", "layers", "colluvium_color"});
     if (b.has("palette")) {
       const std::string palette = b.at("palette").choice({"natural", "debug", "curvature"});
       p.bake.palette = palette == "natural" ? Palette::Natural
                        : palette == "debug" ? Palette::Debug
                                             : Palette::Curvature;
     }
+    if (b.has("layers")) {
+      const Field layers = b.at("layers");
+      for (std::size_t i = 0; i < layers.size(); ++i) {
+        const Field l = layers.item(i);
+        l.expectMap({"durability", "color"});
+        if (!l.has("durability") || !l.has("color")) l.fail("a layer needs durability and color");
+        const PaletteLayer layer{l.at("durability").positive(), readColor(l.at("color"))};
+        if (!p.bake.layers.empty() && layer.durability <= p.bake.layers.back().durability)
+          l.at("durability").fail("layers go from soft to durable: durability must increase");
+        p.bake.layers.push_back(layer);
+      }
+    }
+    if (b.has("colluvium_color")) p.bake.colluvium_color = readColor(b.at("colluvium_color"));
   }
   if (root.has("export")) {
     const Field e = root.at("export");

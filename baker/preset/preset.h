@@ -136,8 +136,18 @@ struct MeshParams {
   std::vector<double> lods;  // ratios in (0, 1), decreasing
 };
 enum class Palette { Natural, Debug, Curvature };
+using SrgbColor = std::array<double, 3>;  // each channel in [0, 1]
+struct PaletteLayer {
+  double durability;  // the layer's durability, > 0
+  SrgbColor color;
+};
 struct BakeParams {
   Palette palette = Palette::Natural;
+  // `natural` palette: colours keyed by durability, interpolated between
+  // layers (sorted by durability). Empty: built-in sandstone keyed to the
+  // asset's durability range.
+  std::vector<PaletteLayer> layers;
+  std::optional<SrgbColor> colluvium_color;  // default a sandy buff
 };
 struct RenderParams {
   std::string template_name = "studio";

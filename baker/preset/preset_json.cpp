@@ -124,7 +124,10 @@ json presetToJson(const Preset& p) {
   if (p.stop.cycles) out["cycles"] = *p.stop.cycles;
   if (p.stop.rock_volume_fraction) out["until"] = {{"rock_volume_fraction", *p.stop.rock_volume_fraction}};
   out["mesh"] = {{"smoothing", p.mesh.smoothing}, {"subdivision", p.mesh.subdivision}, {"lods", p.mesh.lods}};
-  out["bake"] = {{"palette", paletteName(p.bake.palette)}};
+  json layers = json::array();
+  for (const auto& l : p.bake.layers) layers.push_back({{"durability", l.durability}, {"color", l.color}});
+  out["bake"] = {{"palette", paletteName(p.bake.palette)}, {"layers", layers}};
+  if (p.bake.colluvium_color) out["bake"]["colluvium_color"] = *p.bake.colluvium_color;
   out["export"] = p.exports;
   out["render"] = {{"template", p.render.template_name}, {"width", p.render.width},
                    {"height", p.render.height},          {"quality", p.render.quality},
