@@ -150,7 +150,8 @@ TEST(Preset, RejectsInconsistentPresets) {
                 .find("one entry per segment"),
             std::string::npos);
   EXPECT_NE(errorOf("rockbake: 1\nname: Bad Name\n" + box + "time: 1\n").find("may only use"), std::string::npos);
-  EXPECT_NE(errorOf("rockbake: 2\nname: p\n" + box + "time: 1\n").find("rockbake: must be a whole number from 1 to 1"),
+  EXPECT_NE(errorOf("rockbake: 2\nname: p\n" + box + "time: 1\n")
+                .find("dir/p.yaml:1:11: rockbake: schema version 2 is not supported"),
             std::string::npos);
   EXPECT_NE(errorOf(head + "shape: {image: {path: missing.png, height: 1}}\ntime: 1\n").find("shape.image.path"),
             std::string::npos);
@@ -240,6 +241,145 @@ TEST(Preset, ResolvedJsonReadsLikeAPreset) {
   // The dump parses back into the same preset.
   const Preset again = parsePreset(j.dump(), "p.yaml");
   EXPECT_EQ(presetToJson(again), j);
+}
+
+// The SPEC §6 example as an artist would write it (minus extends), with its image next to it.
+TEST(Preset, ReadsTheSpecExampleWithAnImageShape) {
+  test::TempDir dir;
+  test::writeText(dir.path() / "shapes" / "goblin.png", "only its existence is checked here");
+  std::string yaml = kFull;
+  const std::string cylinder = "  cylinder: {radius: 1.0, height: 3.0}\n";
+  yaml.replace(yaml.find(cylinder), cylinder.size(),
+               "  image: {path: shapes/goblin.png, mode: extrude, height: 5.0}\n");
+  const Preset p = parsePreset(yaml, dir.path() / "goblin.yaml");
+  ASSERT_TRUE(std::holds_alternative<ImageShape>(p.shape.kind));
+  const auto& image = std::get<ImageShape>(p.shape.kind);
+  EXPECT_EQ(image.path, dir.path() / "shapes" / "goblin.png");
+  EXPECT_TRUE(image.path.is_absolute());
+  EXPECT_EQ(image.mode, ImageMode::Extrude);
+  EXPECT_EQ(image.height, 5.0);
+  EXPECT_EQ(*p.shape.center, (Vec3d{2.0, 2.0, 0.0}));
+  EXPECT_EQ(p.file, dir.path() / "goblin.yaml");
+  // The resolved JSON names the image by its absolute path.
+  EXPECT_EQ(presetToJson(p)["shape"]["image"]["path"], (dir.path() / "shapes" / "goblin.png").string());
+}
+
+TEST(Preset, ErrorsPointAtTheOffendingNode) {
+  const std::string head = "rockbake: 1\nname: p\n";
+  const std::string box = "shape: {box: {size: [1, 1, 1]}}\n";
+  // A missing image: at the path value, with the resolved path.
+  const std::string missing = errorOf(head + "shape: {image: {path: missing.png, height: 1}}\ntime: 1\n");
+  const std::string resolved = (std::filesystem::absolute("dir/p.yaml").parent_path() / "missing.png").string();
+  EXPECT_NE(missing.find("dir/p.yaml:3:23: shape.image.path: no image file at " + resolved), std::string::npos)
+      << missing;
+  // Two shapes: at the shape map.
+  const std::string two = errorOf(head + "shape: {box: {size: [1, 1, 1]}, sphere: {radius: 1}}\ntime: 1\n");
+  EXPECT_NE(two.find("dir/p.yaml:3:8: shape: has box, sphere; give exactly one of"), std::string::npos) << two;
+  // Neither time nor cycles: the preset as a whole.
+  const std::string neither = errorOf(head + box);
+  EXPECT_NE(neither.find("dir/p.yaml:1:1: missing 'time' (or 'cycles')"), std::string::npos) << neither;
+  // Bands out of order: at the second band's up_to.
+  const std::string bands = errorOf(head + box +
+                                    "time: 1\nbubbles:\n  - {up_to: 0.6, bubble: {sphere: {radius: 0.2}}}\n"
+                                    "  - {up_to: 0.4, bubble: {sphere: {radius: 0.2}}}\n");
+  EXPECT_NE(bands.find("dir/p.yaml:7:13: bubbles.1.up_to: bands go bottom to top"), std::string::npos) << bands;
+  // A bubble below one voxel: at its radius.
+  const std::string tiny =
+      errorOf(head + box + "time: 1\nbubbles:\n  - {up_to: 1, bubble: {sphere: {radius: 0.001}}}\n");
+  EXPECT_NE(tiny.find("dir/p.yaml:6:42: bubbles.0.bubble.sphere.radius: a bubble extent of 0.001 is smaller than "
+                      "one voxel"),
+            std::string::npos)
+      << tiny;
+  // Keyframes out of time order: at the later keyframe's at.
+  const std::string keyframes = errorOf(head + box +
+                                        "time: 1\ndurability:\n  keyframes:\n    - {at: 2, points: [[0, 1]]}\n"
+                                        "    - {at: 1, points: [[0, 1]]}\n");
+  EXPECT_NE(keyframes.find("dir/p.yaml:8:12: durability.keyframes.1.at: keyframes must be in time order"),
+            std::string::npos)
+      << keyframes;
+  // A required key written without a value: at the key.
+  const std::string empty_name = errorOf("rockbake: 1\nname:\n" + box + "time: 1\n");
+  EXPECT_NE(empty_name.find("dir/p.yaml:2:1: name: missing 'name'"), std::string::npos) << empty_name;
+  // Inheritance is not there yet; the message says what to do instead.
+  const std::string extends = errorOf(head + box + "time: 1\nextends: base.yaml\n");
+  EXPECT_NE(extends.find("dir/p.yaml:5:10: extends: preset inheritance (extends) is not supported"), std::string::npos)
+      << extends;
+}
+
+TEST(Preset, RejectsWhatYamlWouldSilentlyDrop) {
+  const std::string base = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ncycles: 5\n";
+  // yaml-cpp keeps the first of two equal keys: the second would be ignored.
+  const std::string twice = errorOf(base + "colluvium:\n  yield: 0.2\n  yield: 0.8\n");
+  EXPECT_NE(twice.find("dir/p.yaml:7:3: colluvium.yield: 'yield' is given twice (first on line 6)"), std::string::npos)
+      << twice;
+  const std::string documents = errorOf(base + "---\nseed: 3\n");
+  EXPECT_NE(documents.find("dir/p.yaml:6:1: a preset holds one YAML document"), std::string::npos) << documents;
+  // A list as a key is an InputError too (exit status 2), not a yaml-cpp conversion error.
+  EXPECT_NE(errorOf(base + "grid: {[1]: 2}\n").find("dir/p.yaml:5:8: grid: expected a key name, found a list"),
+            std::string::npos);
+}
+
+TEST(Preset, DefaultBubbleFitsEveryAllowedResolution) {
+  const std::string plain = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ncycles: 5\n";
+  for (const int resolution : {8, 16, 96, 1024}) {
+    PresetOverrides o;
+    o.resolution = resolution;
+    const Preset p = parsePreset(plain, "p.yaml", o);
+    const double h = 6.0 / resolution;
+    ASSERT_EQ(p.bubbles.size(), 1u);
+    EXPECT_GE(p.bubbles[0].bubble.extents[0], h) << resolution;
+    EXPECT_LE(p.bubbles[0].bubble.extents[0], 48 * h) << resolution;
+  }
+}
+
+TEST(Preset, SetCreatesKeysAndChecksPaths) {
+  const std::string base = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 2\n";
+  PresetOverrides create;
+  create.sets = {"until.rock_volume_fraction=0.4", "shape.box.size.2=3", "render.turntable.frames=12"};
+  const Preset p = parsePreset(base, "p.yaml", create);
+  EXPECT_EQ(*p.stop.rock_volume_fraction, 0.4);
+  EXPECT_EQ(std::get<BoxShape>(p.shape.kind).size[2], 3.0);
+  EXPECT_EQ(p.render.turntable_frames, 12);
+  EXPECT_EQ(*p.stop.time, 2.0);
+
+  const auto setError = [&](const std::string& set) {
+    PresetOverrides bad;
+    bad.sets = {set};
+    return errorOf(base, bad);
+  };
+  EXPECT_NE(setError("shape.box.size.1abc=3").find("--set: 'shape.box.size.1abc=3': '1abc' must be a list index"),
+            std::string::npos);
+  EXPECT_NE(setError("name.first=x").find("--set: 'name.first=x': 'first' cannot be set inside a value"),
+            std::string::npos);
+  EXPECT_NE(setError("colluvium..yield=1").find("empty part"), std::string::npos);
+  // Values the flag introduced are reported at the flag, even when they remove a required key.
+  EXPECT_NE(setError("name=").find("--set name=: name: missing 'name'"), std::string::npos);
+  EXPECT_NE(setError("colluvum.yield=0.3")
+                .find("--set colluvum.yield=0.3: colluvum: unknown key 'colluvum'; "
+                      "did you mean 'colluvium'?"),
+            std::string::npos);
+  PresetOverrides low;
+  low.resolution = 4;
+  EXPECT_NE(errorOf(base, low).find("--resolution 4: grid.resolution: must be a whole number from 8 to 2048"),
+            std::string::npos);
+}
+
+TEST(Preset, ResolvedJsonHasEveryKeyWithDefaults) {
+  const nlohmann::json j =
+      presetToJson(parsePreset("rockbake: 1\nname: plain\nshape: {sphere: {radius: 1}}\ncycles: 5\n", "p.yaml"));
+  for (const char* key : {"rockbake", "name", "seed", "grid", "shape", "durability", "bubbles", "response", "rockfall",
+                          "colluvium", "cycles", "mesh", "bake", "export", "render"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_FALSE(j.contains("time"));
+  EXPECT_FALSE(j.contains("until"));
+  EXPECT_EQ(j["cycles"], 5);
+  EXPECT_EQ(j["durability"]["points"], nlohmann::json::parse("[[0.0, 1.0], [1.0, 1.0]]"));
+  EXPECT_EQ(j["bubbles"][0]["bubble"]["sphere"]["radius"], 6.0 / 16.0);
+  EXPECT_EQ(j["response"]["power"], 1.0);
+  EXPECT_TRUE(j["shape"]["center"].is_null());
+  EXPECT_EQ(j["export"], nlohmann::json::parse(R"(["ply", "obj", "glb", "vdb"])"));
+  // Deterministic, and it loads back to itself.
+  EXPECT_EQ(presetToJson(parsePreset(j.dump(), "p.yaml")).dump(), j.dump());
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -91,12 +92,33 @@ class Field {
     return Field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
   }
   bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
+  // The value of a key that must be given. A key written with no value is reported at the key (an
+  // empty value's own position is the start of the next line).
+  Field require(const std::string& key, const std::string& problem, const std::string& hint = {}) const {
+    if (has(key)) return at(key);
+    if (node_.IsMap())
+      for (const auto& entry : node_)
+        if (entry.first.IsScalar() && entry.first.Scalar() == key)
+          Field(entry.first, join(key), *source_, markOrParent()).fail(problem, hint);
+    fail(problem, hint);
+  }
 
   // Requires a map whose keys are all in `allowed`.
   void expectMap(const std::vector<std::string>& allowed) const {
     if (!node_.IsMap()) fail("expected a map (key: value, ...), found " + describe(node_));
+    std::vector<std::pair<std::string, YAML::Mark>> seen;
     for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
+      if (!entry.first.IsScalar())
+        Field(entry.first, path_, *source_, markOrParent()).fail("expected a key name, found " + describe(entry.first));
+      const std::string key = entry.first.Scalar();
+      // yaml-cpp keeps both entries of a repeated key and lookups find the first: an edit further down
+      // the file would be silently ignored.
+      const auto first = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == key; });
+      if (first != seen.end())
+        Field(entry.first, join(key), *source_, markOrParent())
+            .fail("'" + key + "' is given twice (first on line " + std::to_string(first->second.line + 1) + ")",
+                  "keep one of them");
+      seen.emplace_back(key, entry.first.Mark());
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
       std::string best;
       std::size_t best_distance = std::numeric_limits<std::size_t>::max();
@@ -206,9 +228,14 @@ class Field {
     return (node_.IsDefined() && !node_.Mark().is_null()) ? node_.Mark() : parent_mark_;
   }
   SourceLocation location() const {
-    // A value that came from --set is located there, not in the file.
-    for (const auto& [path, argument] : source_->overrides)
+    // A value that came from --set is located there, not in the file; so is a key the flag created on
+    // its way ("colluvum" in --set colluvum.yield=0.3), which has no position. The last flag wins.
+    const bool from_file = node_.IsDefined() && !node_.Mark().is_null();
+    for (auto it = source_->overrides.rbegin(); it != source_->overrides.rend(); ++it) {
+      const auto& [path, argument] = *it;
       if (path_ == path || path_.rfind(path + ".", 0) == 0) return {argument, 0, 0};
+      if (!from_file && !path_.empty() && path.rfind(path_ + ".", 0) == 0) return {argument, 0, 0};
+    }
     const YAML::Mark mark = markOrParent();
     if (mark.is_null()) return {source_->file, 0, 0};
     return {source_->file, mark.line + 1, mark.column + 1};
@@ -251,11 +278,13 @@ void applyOverride(YAML::Node& root, const std::string& argument, Source& source
     const bool last = i + 1 == keys.size();
     YAML::Node next;
     if (node.IsSequence()) {
-      std::size_t index = 0;
+      const bool digits = std::all_of(key.begin(), key.end(), [](unsigned char c) { return std::isdigit(c); });
+      std::size_t index = std::numeric_limits<std::size_t>::max();
+      if (!digits) bad("'" + key + "' must be a list index (0, 1, ...) at that point");
       try {
         index = std::stoul(key);
-      } catch (const std::exception&) {
-        bad("'" + key + "' must be a list index at that point");
+      } catch (const std::out_of_range&) {
+        // leave it past the end
       }
       if (index >= node.size()) bad("index " + key + " is past the end of a list of " + std::to_string(node.size()));
       if (last) {
@@ -327,9 +356,13 @@ BubbleSpec readBubble(const Field& f) {
   return bubble;
 }
 
-// Every bubble extent must span at least a voxel and stay affordable.
+// Bubble extents in voxels: below one the bubble is the voxel itself and measures nothing; above
+// kMaxBubbleVoxels a cycle costs too much.
+constexpr double kMaxBubbleVoxels = 48.0;
+
+// Every bubble extent must span at least a voxel and stay affordable. `f` is the bubble's map.
 void checkBubbleSize(const BubbleSpec& bubble, const Field& f, double h) {
-  constexpr double kMaxVoxels = 48.0;
+  constexpr double kMaxVoxels = kMaxBubbleVoxels;
   if (bubble.kind == BubbleSpec::Kind::Collection) {
     for (std::size_t i = 0; i < bubble.members.size(); ++i)
       checkBubbleSize(bubble.members[i].bubble, f.at("collection").item(i).at("bubble"), h);
@@ -338,14 +371,18 @@ void checkBubbleSize(const BubbleSpec& bubble, const Field& f, double h) {
   const int axes = bubble.kind == BubbleSpec::Kind::Sphere ? 1 : 3;
   for (int a = 0; a < axes; ++a) {
     const double voxels = bubble.extents[std::size_t(a)] / h;
+    const Field extent = bubble.kind == BubbleSpec::Kind::Sphere      ? f.at("sphere").at("radius")
+                         : bubble.kind == BubbleSpec::Kind::Ellipsoid ? f.at("ellipsoid").at("radii").item(a)
+                                                                      : f.at("box").at("half_extents").item(a);
     if (voxels < 1.0)
-      f.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) + " is smaller than one voxel (" +
-                 formatNumber(h) + " at this resolution)",
-             "make the bubble larger or raise grid.resolution");
+      extent.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) +
+                      " is smaller than one voxel (" + formatNumber(h) + " at this resolution)",
+                  "make the bubble larger or raise grid.resolution");
     if (voxels > kMaxVoxels)
-      f.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) + " spans " +
-                 formatNumber(std::round(voxels)) + " voxels; at most " + formatNumber(kMaxVoxels) + " are allowed",
-             "make the bubble smaller or lower grid.resolution");
+      extent.fail("a bubble extent of " + formatNumber(bubble.extents[std::size_t(a)]) + " spans " +
+                      formatNumber(std::round(voxels)) + " voxels; at most " + formatNumber(kMaxVoxels) +
+                      " are allowed",
+                  "make the bubble smaller or lower grid.resolution");
   }
 }
 
@@ -458,14 +495,18 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
                   "rockfall", "colluvium", "time", "cycles", "until", "mesh", "bake", "export", "render"});
   Preset p;
   p.file = file;
-  if (!root.has("rockbake")) root.fail("missing 'rockbake: 1' (the schema version)");
-  p.schema = int(root.at("rockbake").integer(1, 1));
+  const Field version = root.require("rockbake", "missing 'rockbake: 1' (the schema version)");
+  const long long schema =
+      version.integer(std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+  if (schema != 1)
+    version.fail("schema version " + std::to_string(schema) + " is not supported; this rockbake reads version 1",
+                 "write rockbake: 1, or use the rockbake the preset was written for");
+  p.schema = 1;
   if (root.has("extends"))
     root.at("extends").fail("preset inheritance (extends) is not supported by this version",
                             "copy the base preset's keys into this one");
 
-  if (!root.has("name")) root.fail("missing 'name' (the asset's name, [a-z0-9_-]+)");
-  p.name = root.at("name").string();
+  p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
   if (p.name.empty() || !std::all_of(p.name.begin(), p.name.end(), [](char c) {
         return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
       }))
@@ -481,8 +522,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   }
   const double h = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / p.grid.resolution;
 
-  if (!root.has("shape")) root.fail("missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}");
-  readShape(root.at("shape"), p, file.parent_path());
+  readShape(root.require("shape", "missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}"), p,
+            file.parent_path());
 
   if (root.has("durability")) {
     const Field d = root.at("durability");
@@ -524,11 +565,13 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (p.bubbles.back().up_to != 1.0)
       bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
   } else {
-    // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default.
+    // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default,
+    // kept within what a bubble may span so a preset without bubbles bakes at every allowed resolution
+    // (it is 0.5 voxels at resolution 8 and 128 at 2048).
     BubbleBand band;
     band.bubble.kind = BubbleSpec::Kind::Sphere;
-    band.bubble.extents = {std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / 16.0, 0, 0};
-    checkBubbleSize(band.bubble, root.at("grid"), h);
+    const double radius = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / 16.0;
+    band.bubble.extents = {std::clamp(radius, h, kMaxBubbleVoxels * h), 0, 0};
     p.bubbles = {band};
   }
 
@@ -665,13 +708,21 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
 
 Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
   Source source{file.string(), {}};
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(yaml_text);
+    documents = YAML::LoadAll(yaml_text);
   } catch (const YAML::Exception& e) {
     throw InputError({source.file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1},
                      "", "malformed YAML: " + e.msg, "check the indentation and brackets there");
   }
+  // A second document would be ignored without a word.
+  if (documents.size() > 1) {
+    const YAML::Mark mark = documents[1].Mark();
+    throw InputError({source.file, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1}, "",
+                     "a preset holds one YAML document; a second one starts here",
+                     "remove the '---' and what follows, or make it a preset file of its own");
+  }
+  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (!root.IsMap()) throw InputError({source.file, 1, 1}, "", "a preset must be a YAML map (key: value, ...)");
   for (const auto& argument : overrides.sets) applyOverride(root, argument, source);
   if (overrides.seed) {
