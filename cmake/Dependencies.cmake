@@ -35,3 +35,8 @@ endif()
 if(ROCKBAKE_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# Rendering (SPEC §4): OpenEXR's own CMake config; OpenColorIO through
+# pkg-config, because its CMake package computes a wrong prefix on Debian.
+find_package(OpenEXR CONFIG REQUIRED)
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)

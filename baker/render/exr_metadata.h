@@ -1,0 +1,37 @@
+// EXR headers that say where a render came from (SPEC §4), and the turntable
+// contact sheet. Pixels stay half-float RGB(A).
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rockbake {
+
+struct RenderMetadata {
+  std::string preset;       // rockbake:preset
+  std::string seed;         // rockbake:seed (decimal: a 64-bit seed does not fit a float)
+  std::string preset_hash;  // rockbake:preset_hash
+  std::string version;      // rockbake:version
+  int frame = 0;            // rockbake:frame (float attribute); -1 for a contact sheet
+  // World coordinates, z up. rockbake:camera is the string
+  // "location x y z look_at x y z angle a"; rockbake:camera_angle a float.
+  std::array<double, 3> camera_location{};
+  std::array<double, 3> camera_look_at{};
+  double camera_angle = 0;
+};
+
+// Re-writes `source` (an EXR) as `target` (may be the same path; written
+// atomically) with the attributes above added to its header.
+void writeExrWithMetadata(const std::filesystem::path& source, const std::filesystem::path& target,
+                          const RenderMetadata& metadata);
+
+// Lays `frames` (EXRs of equal size) out left to right, top to bottom in a grid
+// of `columns` columns (0: ceil(sqrt(n))) and writes a half RGBA EXR atomically.
+// Returns {width, height} of the sheet.
+std::array<int, 2> writeContactSheet(const std::vector<std::filesystem::path>& frames,
+                                     const std::filesystem::path& target, const RenderMetadata& metadata,
+                                     int columns = 0);
+
+}  // namespace rockbake

@@ -1,0 +1,173 @@
+#include "render/povray.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <sstream>
+
+namespace rockbake {
+namespace {
+
+std::string tail(const std::string& text, int max_lines) {
+  std::size_t pos = text.size();
+  int lines = 0;
+  while (pos > 0) {
+    const std::size_t nl = text.rfind('\n', pos - 1);
+    if (nl == std::string::npos) return text;
+    if (nl + 1 < text.size() && ++lines > max_lines) return "...\n" + text.substr(nl + 1);
+    pos = nl;
+  }
+  return text;
+}
+
+std::string commandLine(const std::vector<std::string>& argv) {
+  std::string s;
+  for (const auto& a : argv) s += (s.empty() ? "" : " ") + a;
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> povrayArguments(const PovrayJob& job) {
+  std::ostringstream a;
+  a << job.antialias;
+  std::vector<std::string> argv = {job.executable,
+                                   "-D",
+                                   "-V",
+                                   "-P",
+                                   "+I" + job.scene.string(),
+                                   "+O" + job.output.string(),
+                                   "+FE",
+                                   "+W" + std::to_string(job.width),
+                                   "+H" + std::to_string(job.height),
+                                   "+Q" + std::to_string(job.quality),
+                                   job.antialias > 0 ? "+A" + a.str() : std::string("-A"),
+                                   "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads)};
+  return argv;
+}
+
+PovrayResult runPovray(const PovrayJob& job) {
+  const std::vector<std::string> args = povrayArguments(job);
+  std::vector<char*> argv;
+  for (const auto& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+  argv.push_back(nullptr);
+  const std::string cwd = job.working_dir.string();
+
+  int out_pipe[2], err_pipe[2];
+  if (pipe2(out_pipe, O_CLOEXEC) != 0 || pipe2(err_pipe, O_CLOEXEC) != 0)
+    throw PovrayError(std::string("cannot run POV-Ray: pipe failed: ") + std::strerror(errno));
+
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    const int e = errno;
+    close(out_pipe[0]), close(out_pipe[1]), close(err_pipe[0]), close(err_pipe[1]);
+    throw PovrayError(std::string("cannot run POV-Ray: fork failed: ") + std::strerror(e));
+  }
+  if (pid == 0) {
+    // Child: only async-signal-safe calls until exec.
+    setpgid(0, 0);
+    const int devnull = open("/dev/null", O_RDONLY);
+    if (devnull >= 0) dup2(devnull, 0);
+    dup2(out_pipe[1], 1);
+    dup2(out_pipe[1], 2);
+    int e = 0;
+    if (chdir(cwd.c_str()) != 0) {
+      e = errno;
+      const char tag = 'C';
+      (void)!write(err_pipe[1], &tag, 1);
+    } else {
+      execvp(argv[0], argv.data());
+      e = errno;
+      const char tag = 'E';
+      (void)!write(err_pipe[1], &tag, 1);
+    }
+    (void)!write(err_pipe[1], &e, sizeof e);
+    _exit(127);
+  }
+  close(out_pipe[1]);
+  close(err_pipe[1]);
+
+  // Exec failure report: empty read (EOF) means exec succeeded.
+  char tag = 0;
+  int child_errno = 0;
+  bool exec_failed = false;
+  if (read(err_pipe[0], &tag, 1) == 1) {
+    exec_failed = true;
+    (void)!read(err_pipe[0], &child_errno, sizeof child_errno);
+  }
+  close(err_pipe[0]);
+  if (exec_failed) {
+    close(out_pipe[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (tag == 'C')
+      throw PovrayError("cannot run POV-Ray: cannot enter the asset folder " + cwd + ": " + std::strerror(child_errno));
+    if (child_errno == ENOENT)
+      throw PovrayError("POV-Ray ('" + job.executable +
+                        "') was not found on PATH; rendering needs it: install it with: apt-get install povray "
+                        "(Debian package 'povray'), or bake with --no-render");
+    throw PovrayError("cannot run POV-Ray ('" + job.executable + "'): " + std::strerror(child_errno));
+  }
+
+  std::string messages;
+  constexpr std::size_t kKeep = 256 * 1024;
+  bool timed_out = false;
+  const auto deadline = start + job.timeout;
+  char buf[8192];
+  while (true) {
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{out_pipe[0], POLLIN, 0};
+    const int r = poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r <= 0) continue;
+    const ssize_t n = read(out_pipe[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // EOF: POV-Ray closed its output (it is exiting)
+    messages.append(buf, std::size_t(n));
+    if (messages.size() > 2 * kKeep) messages.erase(0, messages.size() - kKeep);
+  }
+  if (timed_out) {
+    kill(-pid, SIGKILL);
+    kill(pid, SIGKILL);
+  }
+  close(out_pipe[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  PovrayResult result;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.messages = messages;
+
+  const std::string where = "POV-Ray (" + commandLine(args) + ", in " + cwd + ")";
+  if (timed_out)
+    throw PovrayError(where + " timed out after " + std::to_string(job.timeout.count()) +
+                      " s and was killed; last messages:\n" + tail(messages, 30));
+  if (WIFSIGNALED(status))
+    throw PovrayError(where + " was killed by signal " + std::to_string(WTERMSIG(status)) + "; last messages:\n" +
+                      tail(messages, 30));
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  // POV-Ray 3.7 reports parse errors on its output; be strict about both.
+  const bool parse_error =
+      messages.find("Parse Error") != std::string::npos || messages.find("Fatal error") != std::string::npos;
+  if (code != 0 || parse_error)
+    throw PovrayError(where + " failed (exit status " + std::to_string(code) + "); POV-Ray said:\n" +
+                      tail(messages, 30));
+  const auto out = job.output.is_absolute() ? job.output : job.working_dir / job.output;
+  if (!std::filesystem::is_regular_file(out))
+    throw PovrayError(where + " exited 0 but wrote no " + out.string() + "; POV-Ray said:\n" + tail(messages, 30));
+  return result;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,43 @@
+// Running POV-Ray as a subprocess (SPEC §4): explicit arguments, the asset
+// folder as working directory, a timeout, its messages captured.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rockbake {
+
+struct PovrayJob {
+  std::filesystem::path working_dir;  // POV-Ray runs here (a user's povray.conf may restrict I/O to it)
+  std::filesystem::path scene;        // +I, relative to working_dir or absolute
+  std::filesystem::path output;       // +O (an .exr; +FE), relative to working_dir or absolute
+  int width = 640;
+  int height = 480;
+  int quality = 9;         // +Q0..11
+  double antialias = 0.3;  // +A<threshold>; <= 0: -A
+  int threads = 1;         // +WT<threads>: POV-Ray's render threads (>= 1)
+  std::chrono::seconds timeout{1800};
+  std::string executable = "povray";  // looked up on PATH
+};
+
+struct PovrayResult {
+  double seconds = 0;
+  std::string messages;  // stdout and stderr together
+};
+
+// Thrown when POV-Ray is missing, fails, or times out. what() says which, with
+// the tail of POV-Ray's messages (its own parse error, for a broken template).
+class PovrayError : public std::runtime_error {
+ public:
+  explicit PovrayError(const std::string& what) : std::runtime_error(what) {}
+};
+
+// The argument vector runPovray passes (argv[0] = executable).
+std::vector<std::string> povrayArguments(const PovrayJob& job);
+
+PovrayResult runPovray(const PovrayJob& job);
+
+}  // namespace rockbake

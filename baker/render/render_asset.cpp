@@ -1,0 +1,149 @@
+#include "render/render_asset.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <system_error>
+#include <thread>
+
+#include "render/color.h"
+#include "render/exr_metadata.h"
+#include "render/povray.h"
+#include "render/scene.h"
+
+#ifndef ROCKBAKE_VERSION
+#define ROCKBAKE_VERSION "unknown"
+#endif
+
+namespace rockbake {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::string frameName(int i) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%04d", i);
+  return buf;
+}
+
+RenderMetadata metadataFor(const RenderRequest& r, int frame, const CameraSetup& cam) {
+  RenderMetadata m;
+  m.preset = r.preset_name;
+  m.seed = std::to_string(r.seed);
+  m.preset_hash = r.preset_hash;
+  m.version = ROCKBAKE_VERSION;
+  m.frame = frame;
+  m.camera_location = cam.location;
+  m.camera_look_at = cam.look_at;
+  m.camera_angle = cam.angle_deg;
+  return m;
+}
+
+// POV-Ray writes to a hidden temporary; the final EXR (with metadata) appears
+// atomically, so a killed render never leaves a file that looks finished.
+void renderOne(const RenderRequest& r, int threads, const std::filesystem::path& scene_rel,
+               const std::filesystem::path& exr_rel, const RenderMetadata& md, int width, int height) {
+  std::string tmp_name = ".";
+  tmp_name += exr_rel.stem().string();
+  tmp_name += ".povray.exr";
+  const auto tmp_rel = exr_rel.parent_path() / tmp_name;
+  PovrayJob job;
+  job.working_dir = r.asset_dir;
+  job.scene = scene_rel;
+  job.output = tmp_rel;
+  job.width = width;
+  job.height = height;
+  job.quality = r.params.quality;
+  job.antialias = r.params.antialias;
+  job.threads = threads;
+  job.timeout = r.timeout;
+  try {
+    runPovray(job);
+    writeExrWithMetadata(r.asset_dir / tmp_rel, r.asset_dir / exr_rel, md);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(r.asset_dir / tmp_rel, ec);
+    throw;
+  }
+  std::error_code ec;
+  std::filesystem::remove(r.asset_dir / tmp_rel, ec);
+}
+
+RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r) {
+  const auto t0 = Clock::now();
+  const auto template_dir = r.template_dir.empty() ? defaultRenderTemplatesDir() : r.template_dir;
+  const auto ocio = r.ocio_config.empty() ? template_dir / "ocio" / "config.ocio" : r.ocio_config;
+  const std::string name = r.template_override.empty() ? r.params.template_name : r.template_override;
+  const int threads = r.threads > 0 ? r.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int w = r.params.width, h = r.params.height;
+
+  RenderOutputs out;
+  out.scene = r.asset_dir / "scene.pov";
+  out.mesh_include = r.asset_dir / "rock_mesh.inc";
+  out.render_exr = r.asset_dir / "render.exr";
+  out.render_png = r.asset_dir / "render.png";
+
+  const auto still_template = findTemplate(template_dir, name);
+  std::filesystem::path turntable_template;
+  if (r.params.turntable_frames > 0) turntable_template = findTemplate(template_dir, "turntable");
+
+  std::filesystem::create_directories(r.asset_dir);
+  AssetFrame meshes;
+  if (mesh_data) {
+    writeMeshInclude(*mesh_data, out.mesh_include);
+    meshes = assetFrame(*mesh_data);
+  } else {
+    meshes = readAssetFrame(out.mesh_include);
+  }
+  const CameraSetup home = frameCamera(meshes, w, h);
+  writeScene(still_template, scenePlaceholders(meshes, home, home, SceneFrame{}, "rock_mesh.inc"), out.scene);
+  out.seconds_scene = since(t0);
+
+  auto t = Clock::now();
+  renderOne(r, threads, "scene.pov", "render.exr", metadataFor(r, 0, home), w, h);
+  out.seconds_still = since(t);
+  t = Clock::now();
+  exrToPng(out.render_exr, out.render_png, ocio);
+  out.seconds_post += since(t);
+
+  const int frames = r.params.turntable_frames;
+  if (frames > 0) {
+    // The turntable frames render at the still's size; the contact sheet is
+    // a grid of them.
+    t = Clock::now();
+    for (int i = 0; i < frames; ++i) {
+      SceneFrame f{i, frames, 360.0 * i / frames};
+      const CameraSetup cam = frameCamera(meshes, w, h, f.turntable_deg);
+      const std::filesystem::path scene_rel = std::filesystem::path("turntable") / (frameName(i) + ".pov");
+      const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
+      // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
+      // relative to the working directory (the asset folder).
+      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc"), r.asset_dir / scene_rel);
+      renderOne(r, threads, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
+      out.turntable_frames.push_back(r.asset_dir / exr_rel);
+    }
+    out.seconds_turntable = since(t);
+    t = Clock::now();
+    out.turntable_sheet_exr = r.asset_dir / "turntable_sheet.exr";
+    out.turntable_sheet_png = r.asset_dir / "turntable_sheet.png";
+    writeContactSheet(out.turntable_frames, out.turntable_sheet_exr, metadataFor(r, -1, home));
+    exrToPng(out.turntable_sheet_exr, out.turntable_sheet_png, ocio);
+    out.seconds_post += since(t);
+  }
+  out.seconds_total = since(t0);
+  return out;
+}
+
+}  // namespace
+
+RenderOutputs renderAsset(const AssetMeshes& meshes, const RenderRequest& request) {
+  return renderScenes(&meshes, request);
+}
+
+RenderOutputs rerenderAsset(const RenderRequest& request) {
+  return renderScenes(nullptr, request);
+}
+
+}  // namespace rockbake

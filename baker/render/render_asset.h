@@ -1,0 +1,53 @@
+// The render stage (SPEC §4): scene → POV-Ray → EXR with metadata → OCIO PNG
+// preview; optionally a turntable and its contact sheet.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "preset/preset.h"
+
+namespace rockbake {
+
+struct RenderRequest {
+  std::filesystem::path asset_dir;     // OUT/<name>/; everything is written here
+  RenderParams params;                 // the preset's render: block
+  std::filesystem::path template_dir;  // empty: defaultRenderTemplatesDir()
+  std::string template_override;       // `--template NAME`; empty: params.template_name
+  std::filesystem::path ocio_config;   // empty: <template_dir>/ocio/config.ocio
+  std::string preset_name;
+  std::uint64_t seed = 0;
+  std::string preset_hash;
+  int threads = 0;  // POV-Ray's +WT; 0: all hardware threads (call it when the baker's own pool is idle)
+  std::chrono::seconds timeout{1800};  // per POV-Ray run
+};
+
+struct RenderOutputs {
+  std::filesystem::path scene;                          // scene.pov
+  std::filesystem::path mesh_include;                   // rock_mesh.inc
+  std::filesystem::path render_exr;                     // render.exr
+  std::filesystem::path render_png;                     // render.png
+  std::vector<std::filesystem::path> turntable_frames;  // turntable/0000.exr, …
+  std::filesystem::path turntable_sheet_exr;            // empty without a turntable
+  std::filesystem::path turntable_sheet_png;
+  double seconds_scene = 0;      // writing the include and scenes
+  double seconds_still = 0;      // POV-Ray, the still
+  double seconds_turntable = 0;  // POV-Ray, all frames
+  double seconds_post = 0;       // metadata, contact sheet, PNG previews
+  double seconds_total = 0;
+};
+
+// Throws PovrayError (POV-Ray missing / failed / timed out) or
+// std::runtime_error (template missing or with an unknown placeholder, I/O).
+RenderOutputs renderAsset(const AssetMeshes& meshes, const RenderRequest& request);
+
+// `rockbake render ASSET_DIR`: renders again from the asset folder's existing
+// rock_mesh.inc (written by renderAsset; it records the framing), so neither
+// the simulation nor the meshes are needed. Same outputs as renderAsset.
+RenderOutputs rerenderAsset(const RenderRequest& request);
+
+}  // namespace rockbake

@@ -1,0 +1,411 @@
+// Render stage (SPEC §4): real POV-Ray renders at thumbnail size, read back
+// with OpenEXR; OpenColorIO against the sRGB formula; failure messages.
+#include <gtest/gtest.h>
+
+#include <OpenEXR/ImfArray.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "render/color.h"
+#include "render/exr_metadata.h"
+#include "render/povray.h"
+#include "render/render_asset.h"
+#include "render/scene.h"
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+using Color = std::array<float, 3>;
+using Pos = std::array<float, 3>;
+
+// A subdivided icosphere about `c`, coloured per vertex by `color(position)`.
+SurfaceMesh icosphere(int levels, Pos c, float r, const std::function<Color(const Pos&)>& color) {
+  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<Pos> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                        {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<std::uint32_t, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  auto norm = [](Pos p) {
+    const float l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    return Pos{p[0] / l, p[1] / l, p[2] / l};
+  };
+  for (auto& p : v) p = norm(p);
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
+    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back(norm({v[a][0] + v[b][0], v[a][1] + v[b][1], v[a][2] + v[b][2]}));
+      return mid[key] = std::uint32_t(v.size() - 1);
+    };
+    std::vector<std::array<std::uint32_t, 3>> next;
+    for (const auto& tri : f) {
+      const auto a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), cc = midpoint(tri[2], tri[0]);
+      next.push_back({tri[0], a, cc});
+      next.push_back({tri[1], b, a});
+      next.push_back({tri[2], cc, b});
+      next.push_back({a, b, cc});
+    }
+    f = std::move(next);
+  }
+  SurfaceMesh m;
+  m.name = "rock";
+  for (const auto& n : v) {
+    const Pos p{c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2]};
+    m.positions.push_back(p);
+    m.normals.push_back(n);
+    m.colors.push_back(color(p));
+  }
+  m.triangles = f;
+  return m;
+}
+
+AssetMeshes asset(SurfaceMesh rock) {
+  AssetMeshes a;
+  a.rock = std::move(rock);
+  a.bounds_min = {1e30f, 1e30f, 1e30f};
+  a.bounds_max = {-1e30f, -1e30f, -1e30f};
+  for (const auto& p : a.rock.positions)
+    for (int i = 0; i < 3; ++i) {
+      a.bounds_min[i] = std::min(a.bounds_min[i], p[i]);
+      a.bounds_max[i] = std::max(a.bounds_max[i], p[i]);
+    }
+  return a;
+}
+
+// Red above z = 1, blue below: a sphere of radius 1 resting on the ground.
+AssetMeshes twoLayerRock(int levels = 3) {
+  return asset(icosphere(levels, {0, 0, 1}, 1.0f, [](const Pos& p) {
+    return p[2] > 1.0f ? Color{1.0f, 0.0f, 0.0f} : Color{0.0f, 0.0f, 1.0f};
+  }));
+}
+
+RenderRequest request(const std::filesystem::path& dir, const std::string& tmpl, int w, int h, int frames = 0) {
+  RenderRequest r;
+  r.asset_dir = dir;
+  r.params.template_name = tmpl;
+  r.params.width = w;
+  r.params.height = h;
+  r.params.quality = 9;
+  r.params.antialias = 0;  // exact colours, faster
+  r.params.turntable_frames = frames;
+  r.preset_name = "test_rock";
+  r.seed = 18446744073709551615ull;
+  r.preset_hash = "abc123";
+  r.threads = 2;
+  r.timeout = std::chrono::seconds(60);
+  return r;
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<Imf::Rgba> px;
+  const Imf::Rgba& at(int x, int y) const { return px[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
+Image readExr(const std::filesystem::path& file) {
+  Imf::RgbaInputFile in(file.string().c_str());
+  const auto dw = in.dataWindow();
+  Image img;
+  img.width = dw.max.x - dw.min.x + 1;
+  img.height = dw.max.y - dw.min.y + 1;
+  img.px.resize(std::size_t(img.width) * std::size_t(img.height));
+  in.setFrameBuffer(img.px.data() - dw.min.x - std::ptrdiff_t(dw.min.y) * img.width, 1, std::size_t(img.width));
+  in.readPixels(dw.min.y, dw.max.y);
+  return img;
+}
+
+std::string stringAttr(const Imf::Header& h, const char* name) {
+  const auto* a = h.findTypedAttribute<Imf::StringAttribute>(name);
+  return a ? a->value() : "<missing>";
+}
+
+TEST(RenderTest, StillIsHalfEXRWithMetadataAndFramedAsset) {
+  test::TempDir dir;
+  const RenderOutputs out = renderAsset(twoLayerRock(), request(dir.path(), "debug", 64, 48));
+  ASSERT_TRUE(std::filesystem::is_regular_file(out.render_exr));
+  EXPECT_TRUE(std::filesystem::is_regular_file(out.render_png));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "scene.pov"));
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "rock_mesh.inc"));
+
+  Imf::InputFile file(out.render_exr.string().c_str());
+  const Imf::Header& h = file.header();
+  for (const char* c : {"R", "G", "B"}) {
+    const Imf::Channel* ch = h.channels().findChannel(c);
+    ASSERT_NE(ch, nullptr) << c;
+    EXPECT_EQ(ch->type, Imf::HALF) << c;
+  }
+  EXPECT_EQ(stringAttr(h, "rockbake:preset"), "test_rock");
+  EXPECT_EQ(stringAttr(h, "rockbake:seed"), "18446744073709551615");
+  EXPECT_EQ(stringAttr(h, "rockbake:preset_hash"), "abc123");
+  EXPECT_EQ(stringAttr(h, "rockbake:version"), ROCKBAKE_VERSION);
+  EXPECT_NE(stringAttr(h, "rockbake:camera").find("look_at 0 0 1"), std::string::npos)
+      << stringAttr(h, "rockbake:camera");
+  const auto* frame = h.findTypedAttribute<Imf::FloatAttribute>("rockbake:frame");
+  ASSERT_NE(frame, nullptr);
+  EXPECT_EQ(frame->value(), 0.0f);
+
+  // The debug template's background is black; the asset is everything else.
+  const Image img = readExr(out.render_exr);
+  ASSERT_EQ(img.width, 64);
+  ASSERT_EQ(img.height, 48);
+  double n = 0, sx = 0, sy = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const auto& p = img.at(x, y);
+      if (float(p.r) + float(p.g) + float(p.b) > 0.02f) n += 1, sx += x + 0.5, sy += y + 0.5;
+    }
+  const double coverage = n / (img.width * img.height);
+  EXPECT_GT(coverage, 0.15);
+  EXPECT_LT(coverage, 0.85);
+  ASSERT_GT(n, 0);
+  EXPECT_NEAR(sx / n, img.width / 2.0, 0.1 * img.width);
+  EXPECT_NEAR(sy / n, img.height / 2.0, 0.1 * img.height);
+}
+
+TEST(RenderTest, FramingFillsTallAndWideImages) {
+  // A wide, flat slab and a tall column, each in a wide and a tall image: the
+  // asset spans most of the frame in one direction and is never cut off.
+  for (const auto& [sx, sz] : {std::pair{3.0f, 0.5f}, std::pair{0.5f, 3.0f}}) {
+    SurfaceMesh m = icosphere(2, {0, 0, 0}, 1.0f, [](const Pos&) { return Color{1, 1, 1}; });
+    for (auto& p : m.positions) p = {p[0] * sx, p[1] * sx, p[2] * sz + sz};
+    const AssetMeshes a = asset(m);
+    for (const auto& [w, h] : {std::pair{64, 32}, std::pair{32, 64}}) {
+      test::TempDir dir;
+      const RenderOutputs out = renderAsset(a, request(dir.path(), "debug", w, h));
+      const Image img = readExr(out.render_exr);
+      int border = 0, x0 = w, x1 = -1, y0 = h, y1 = -1;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          if (float(img.at(x, y).r) > 0.02f) {
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+            if (x == 0 || y == 0 || x == w - 1 || y == h - 1) ++border;
+          }
+      const double fill = std::max(double(x1 - x0 + 1) / w, double(y1 - y0 + 1) / h);
+      EXPECT_GT(fill, 0.5) << sx << "x" << sz << " in " << w << "x" << h;
+      EXPECT_EQ(border, 0) << sx << "x" << sz << " in " << w << "x" << h;
+    }
+  }
+}
+
+TEST(RenderTest, DebugColoursSurvive) {
+  test::TempDir dir;
+  const RenderOutputs out = renderAsset(twoLayerRock(), request(dir.path(), "debug", 64, 48));
+  const Image img = readExr(out.render_exr);
+  // The sphere fills the image height about its centre; the camera is 20°
+  // above the horizon, so the red (upper) half is above the image centre.
+  const Imf::Rgba& top = img.at(32, 24 - 12);
+  const Imf::Rgba& bottom = img.at(32, 24 + 12);
+  EXPECT_GT(float(top.r), 0.9f);
+  EXPECT_LT(float(top.b), 0.05f);
+  EXPECT_LT(float(bottom.r), 0.05f);
+  EXPECT_GT(float(bottom.b), 0.9f);
+  EXPECT_LT(float(top.g) + float(bottom.g), 0.05f);
+}
+
+double srgbEncode(double v) {
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+TEST(RenderTest, OcioDisplayMatchesSrgbFormula) {
+  for (double v : {0.0, 0.001, 0.0031308, 0.01, 0.05, 0.18, 0.5, 0.75, 1.0}) {
+    const auto d = sceneLinearToDisplay({float(v), float(v) * 0.5f, float(v) * 0.25f});
+    EXPECT_NEAR(d[0], srgbEncode(v), 1e-3) << v;
+    EXPECT_NEAR(d[1], srgbEncode(v * 0.5), 1e-3) << v;
+    EXPECT_NEAR(d[2], srgbEncode(v * 0.25), 1e-3) << v;
+    const auto back = srgbToSceneLinear({float(srgbEncode(v)), 0.5f, 1.0f});
+    EXPECT_NEAR(back[0], v, 1e-4) << v;
+    EXPECT_NEAR(back[1], std::pow((0.5 + 0.055) / 1.055, 2.4), 1e-4);
+    EXPECT_NEAR(back[2], 1.0, 1e-4);
+  }
+}
+
+TEST(RenderTest, ShippedOcioConfigPassesOciocheck) {
+  const std::string cmd = "ociocheck --iconfig '" + defaultOcioConfig().string() + "' 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string output;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) output.append(buf, n);
+  const int status = pclose(p);
+  ASSERT_EQ(status, 0) << output;
+  EXPECT_EQ(output.find("ERROR"), std::string::npos) << output;
+  EXPECT_NE(output.find("passed"), std::string::npos) << output;
+}
+
+TEST(RenderTest, TurntableFramesDifferAndContactSheetHasGridSize) {
+  test::TempDir dir;
+  // Asymmetric colours, so every view differs.
+  const AssetMeshes a = asset(icosphere(2, {0, 0, 1}, 1.0f, [](const Pos& p) {
+    return Color{p[0] > 0 ? 0.8f : 0.1f, p[1] > 0 ? 0.6f : 0.1f, 0.2f};
+  }));
+  const RenderOutputs out = renderAsset(a, request(dir.path(), "studio", 40, 30, 3));
+  ASSERT_EQ(out.turntable_frames.size(), 3u);
+  std::vector<Image> frames;
+  for (int i = 0; i < 3; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "turntable/%04d.exr", i);
+    EXPECT_EQ(out.turntable_frames[std::size_t(i)], dir.path() / name);
+    ASSERT_TRUE(std::filesystem::is_regular_file(dir.path() / name)) << name;
+    frames.push_back(readExr(dir.path() / name));
+    Imf::InputFile f((dir.path() / name).string().c_str());
+    EXPECT_EQ(f.header().findTypedAttribute<Imf::FloatAttribute>("rockbake:frame")->value(), float(i));
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j) {
+      double diff = 0;
+      for (std::size_t k = 0; k < frames[0].px.size(); ++k)
+        diff += std::abs(float(frames[std::size_t(i)].px[k].r) - float(frames[std::size_t(j)].px[k].r)) +
+                std::abs(float(frames[std::size_t(i)].px[k].g) - float(frames[std::size_t(j)].px[k].g));
+      EXPECT_GT(diff / double(frames[0].px.size()), 1e-3) << i << " vs " << j;
+    }
+  // 3 frames → 2 × 2 grid of 40 × 30.
+  const Image sheet = readExr(out.turntable_sheet_exr);
+  EXPECT_EQ(sheet.width, 80);
+  EXPECT_EQ(sheet.height, 60);
+  EXPECT_FLOAT_EQ(float(sheet.at(39, 29).r), float(frames[0].at(39, 29).r));
+  EXPECT_FLOAT_EQ(float(sheet.at(40 + 5, 7).g), float(frames[1].at(5, 7).g));
+  EXPECT_TRUE(std::filesystem::is_regular_file(out.turntable_sheet_png));
+  EXPECT_TRUE(std::filesystem::is_regular_file(out.render_png));
+}
+
+TEST(RenderTest, TemplateSyntaxErrorSurfacesPovrayMessage) {
+  test::TempDir dir;
+  const auto templates = dir.path() / "templates";
+  test::writeText(templates / "broken.pov",
+                  "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n#include \"{{MESH_INCLUDE}}\"\n"
+                  "camera { location {{CAMERA_LOCATION}} look_at {{CAMERA_LOOK_AT}} }\n"
+                  "object { Rockbake_Rock pigment { rgb 1 }\n");  // missing brace
+  RenderRequest r = request(dir.path() / "asset", "broken", 32, 24);
+  r.template_dir = templates;
+  try {
+    renderAsset(twoLayerRock(1), r);
+    FAIL() << "expected a POV-Ray error";
+  } catch (const PovrayError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("Parse Error"), std::string::npos) << what;
+    EXPECT_NE(what.find("scene.pov"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "asset" / "render.exr"));
+}
+
+TEST(RenderTest, UnknownPlaceholderAndMissingTemplateAreClearErrors) {
+  EXPECT_THROW(
+      {
+        try {
+          fillTemplate("a\n{{CAMERA_LOCATOIN}}", {{"CAMERA_LOCATION", "<0,0,0>"}}, "t.pov");
+        } catch (const std::runtime_error& e) {
+          EXPECT_NE(std::string(e.what()).find("t.pov:2: unknown placeholder {{CAMERA_LOCATOIN}}"), std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      std::runtime_error);
+  try {
+    findTemplate(defaultRenderTemplatesDir(), "no_such_template");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("studio"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RenderTest, MissingPovrayNamesThePackage) {
+  test::TempDir dir;
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  setenv("PATH", dir.path().string().c_str(), 1);
+  std::string what;
+  try {
+    renderAsset(twoLayerRock(1), request(dir.path() / "asset", "debug", 32, 24));
+  } catch (const PovrayError& e) {
+    what = e.what();
+  }
+  setenv("PATH", saved.c_str(), 1);
+  EXPECT_NE(what.find("apt-get install povray"), std::string::npos) << what;
+}
+
+TEST(RenderTest, PovrayArgumentsAreExplicit) {
+  PovrayJob job;
+  job.scene = "scene.pov";
+  job.output = "render.exr";
+  job.width = 320;
+  job.height = 240;
+  job.quality = 9;
+  job.antialias = 0.3;
+  job.threads = 2;
+  const auto args = povrayArguments(job);
+  const std::vector<std::string> expected = {"povray", "-D",    "-V",    "-P",  "+Iscene.pov", "+Orender.exr",
+                                             "+FE",    "+W320", "+H240", "+Q9", "+A0.3",       "+WT2"};
+  EXPECT_EQ(args, expected);
+}
+
+TEST(RenderTest, WorldToPovSwapsYAndZ) {
+  EXPECT_EQ(worldToPov({1, 2, 3}), (Vec3{1, 3, 2}));
+}
+
+}  // namespace
+}  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+TEST(RenderTest, PovrayTimeoutKillsIt) {
+  test::TempDir dir;
+  test::writeText(dir.path() / "forever.pov", "#version 3.7;\n#while (1)\n#end\n");
+  PovrayJob job;
+  job.working_dir = dir.path();
+  job.scene = "forever.pov";
+  job.output = "out.exr";
+  job.width = 16;
+  job.height = 16;
+  job.timeout = std::chrono::seconds(1);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    runPovray(job);
+    FAIL() << "expected a timeout";
+  } catch (const PovrayError& e) {
+    EXPECT_NE(std::string(e.what()).find("timed out"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+}
+
+}  // namespace
+}  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+TEST(RenderTest, RerenderFromAssetFolderNeedsNoMeshes) {
+  test::TempDir dir;
+  const RenderOutputs first = renderAsset(twoLayerRock(1), request(dir.path(), "debug", 32, 24));
+  const Image before = readExr(first.render_exr);
+  std::filesystem::remove(first.render_exr);
+  RenderRequest again = request(dir.path(), "studio", 32, 24);
+  again.template_override = "debug";
+  const RenderOutputs second = rerenderAsset(again);
+  const Image after = readExr(second.render_exr);
+  ASSERT_EQ(before.px.size(), after.px.size());
+  for (std::size_t i = 0; i < before.px.size(); ++i) EXPECT_EQ(float(before.px[i].r), float(after.px[i].r)) << i;
+  test::TempDir empty;
+  EXPECT_THROW(rerenderAsset(request(empty.path(), "debug", 32, 24)), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace rockbake
