@@ -32,7 +32,7 @@ bool wants(const Preset& preset, const char* format) {
 
 }  // namespace
 
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   MeshStageResult r;
   auto clock = std::chrono::steady_clock::now();
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing});
@@ -63,6 +63,14 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
                 meshes.rock.positions.size(), meshes.rock.triangles.size(), meshes.colluvium.positions.size(),
                 meshes.colluvium.triangles.size());
 
+  r.meshes = std::move(meshes);
+  return r;
+}
+
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
+  MeshStageResult r = buildMeshes(rock, preset);
+  const AssetMeshes& meshes = r.meshes;
+  auto clock = std::chrono::steady_clock::now();
   const auto export_start = clock;
 
   const auto logged = [&](const char* what) { spdlog::debug("{}: {} in {:.3f} s", preset.name, what, since(clock)); };
@@ -90,7 +98,6 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
   }
   since(clock);
   r.export_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count();
-  r.meshes = std::move(meshes);
   return r;
 }
 

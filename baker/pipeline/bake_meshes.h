@@ -20,6 +20,10 @@ struct MeshStageResult {
   double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, export_seconds = 0;
 };
 
+// Surfaces, attributes, subdivision and palette, in memory (no files).
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);
+
+// buildMeshes, then the files the preset's `export:` list asks for.
 // Throws std::runtime_error on failure (nothing half-written).
 MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir);
 

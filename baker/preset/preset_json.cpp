@@ -1,5 +1,6 @@
 #include "preset/preset_json.h"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 namespace rockbake {
@@ -133,6 +134,12 @@ json presetToJson(const Preset& p) {
                    {"height", p.render.height},          {"quality", p.render.quality},
                    {"antialias", p.render.antialias},    {"turntable", {{"frames", p.render.turntable_frames}}}};
   return out;
+}
+
+std::string presetHash(const Preset& preset) {
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (unsigned char c : presetToJson(preset).dump()) hash = (hash ^ c) * 0x100000001b3ull;
+  return fmt::format("{:016x}", hash);
 }
 
 }  // namespace rockbake
