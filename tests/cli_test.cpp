@@ -119,6 +119,37 @@ TEST(Cli, RockVdbIsByteIdenticalAcrossThreadCountsAndRuns) {
   }
 }
 
+// The whole recipe, rendered small: bake writes meshes and a render; `render`
+// re-renders the asset folder with another template without re-simulating.
+TEST(Cli, BakeRendersAndRenderReRendersTheAssetFolder) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", std::string(kSmallPreset) +
+                                           "mesh: {subdivision: 0, lods: []}\nexport: [ply, glb]\n"
+                                           "render: {template: studio, width: 64, height: 48, quality: 4}\n");
+  const auto out = dir.path() / "out";
+  const auto baked = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string()});
+  ASSERT_EQ(baked.exit_status, 0) << baked.output;
+  for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "render.exr", "render.png", "scene.pov"})
+    EXPECT_TRUE(fs::is_regular_file(out / "small" / file)) << file;
+  EXPECT_FALSE(fs::exists(out / "small" / "rock.obj"));  // not in export:
+  const auto stats = nlohmann::json::parse(readBytes(out / "small" / "stats.json"));
+  for (const char* stage : {"mesh_extract", "mesh_subdivide", "export", "render"})
+    EXPECT_GT(stats["stages"][stage].get<double>(), 0.0) << stage;
+
+  const std::string still = readBytes(out / "small" / "render.exr");
+  const auto again = runRockbake({"render", (out / "small").string(), "--template", "debug"});
+  ASSERT_EQ(again.exit_status, 0) << again.output;
+  EXPECT_NE(readBytes(out / "small" / "render.exr"), still) << "the debug template should render differently";
+
+  // --no-render stops after the meshes; --no-mesh after the VDB.
+  const auto no_render =
+      runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "b").string(), "--no-render"});
+  ASSERT_EQ(no_render.exit_status, 0) << no_render.output;
+  EXPECT_TRUE(fs::exists(dir.path() / "b" / "small" / "rock.ply"));
+  EXPECT_FALSE(fs::exists(dir.path() / "b" / "small" / "render.exr"));
+  EXPECT_EQ(runRockbake({"render", dir.path().string()}).exit_status, 2);
+}
+
 struct BadPreset {
   const char* label;
   std::string yaml;

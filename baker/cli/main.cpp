@@ -2,6 +2,8 @@
 // arguments, 1 any other failure; every failure prints what to fix.
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -12,9 +14,12 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "pipeline/bake_asset.h"
 #include "preset/load_preset.h"
+#include "preset/preset_json.h"
+#include "render/render_asset.h"
 #include "util/error.h"
 
 namespace {
@@ -63,10 +68,53 @@ int runBake(const BakeArgs& args) {
     options.mesh = !args.no_mesh;
     options.render = !args.no_render;
     options.load_seconds = load_seconds[i];
+    options.render_threads = args.threads;
     const auto summary = rockbake::bakeAsset(presets[i], options);
     spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
   }
+  return kExitOk;
+}
+
+struct RenderArgs {
+  std::string asset_dir;
+  std::string template_name;
+  int threads = 0;
+};
+
+// Renders a baked asset again from its folder (its stats.json and rock_mesh.inc).
+int runRender(const RenderArgs& args) {
+  namespace fs = std::filesystem;
+  const fs::path dir = args.asset_dir;
+  const fs::path stats_file = dir / "stats.json";
+  if (!fs::is_regular_file(stats_file) || !fs::is_regular_file(dir / "rock_mesh.inc"))
+    throw rockbake::InputError({dir.string()}, "", "not a rendered asset folder (no stats.json or rock_mesh.inc)",
+                               "bake it first with `rockbake bake PRESET` (without --no-mesh / --no-render)");
+  nlohmann::json stats;
+  try {
+    std::ifstream in(stats_file);
+    stats = nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw rockbake::InputError({stats_file.string()}, "", std::string("unreadable: ") + e.what(),
+                               "bake the asset again");
+  }
+  const nlohmann::json& preset = stats.at("preset");
+  const nlohmann::json& render = preset.at("render");
+  rockbake::RenderRequest request;
+  request.asset_dir = dir;
+  request.params.template_name = render.at("template").get<std::string>();
+  request.params.width = render.at("width").get<int>();
+  request.params.height = render.at("height").get<int>();
+  request.params.quality = render.value("quality", request.params.quality);
+  request.params.antialias = render.value("antialias", request.params.antialias);
+  request.params.turntable_frames = render.at("turntable").value("frames", 0);
+  request.template_override = args.template_name;
+  request.preset_name = preset.at("name").get<std::string>();
+  request.seed = preset.at("seed").get<std::uint64_t>();
+  request.preset_hash = rockbake::presetHash(preset);
+  request.threads = args.threads;
+  const auto out = rockbake::rerenderAsset(request);
+  spdlog::info("{}: rendered {} in {:.1f} s", request.preset_name, out.render_png.string(), out.seconds_total);
   return kExitOk;
 }
 
@@ -95,6 +143,15 @@ int main(int argc, char** argv) {
   bake_cmd->add_flag("--no-mesh", bake.no_mesh, "Skip meshing (and so rendering)");
   bake_cmd->add_flag("--no-render", bake.no_render, "Skip rendering");
 
+  RenderArgs render;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a baked asset again, without re-simulating");
+  render_cmd->add_option("asset_dir", render.asset_dir, "An asset folder written by `rockbake bake` (OUT/<name>)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  render_cmd->add_option("--template", render.template_name, "A template in render_templates/ (default: the preset's)");
+  render_cmd->add_option("--threads", render.threads, "POV-Ray threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -109,6 +166,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*bake_cmd) return runBake(bake);
+    if (*render_cmd) return runRender(render);
   } catch (const rockbake::InputError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;

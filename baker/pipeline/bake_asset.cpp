@@ -9,6 +9,7 @@
 #include "io/vdb_file.h"
 #include "pipeline/bake_meshes.h"
 #include "preset/preset_json.h"
+#include "render/render_asset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 
@@ -92,6 +93,20 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
     stages["mesh_attributes"] = meshes.attributes_seconds;
     stages["export"] = meshes.export_seconds;
     clock.lap();
+
+    if (options.render) {
+      RenderRequest request;
+      request.asset_dir = summary.asset_dir;
+      request.params = preset.render;
+      request.preset_name = preset.name;
+      request.seed = preset.seed;
+      request.preset_hash = presetHash(preset);
+      request.threads = options.render_threads;
+      const RenderOutputs rendered = renderAsset(meshes.meshes, request);
+      stages["render"] = rendered.seconds_total;
+      spdlog::info("{}: rendered {} in {:.1f} s", preset.name, rendered.render_png.string(), rendered.seconds_total);
+      clock.lap();
+    }
   }
 
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count();

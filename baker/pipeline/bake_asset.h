@@ -1,5 +1,6 @@
 // BakeAsset: the recipe. One validated preset in, one asset folder out:
-//   preset ─▶ initial rock ─▶ weathering cycles ─▶ OUT/<name>/{rock.vdb, stats.json}
+//   preset ─▶ initial rock ─▶ weathering cycles ─▶ rock.vdb ─▶ meshes and exports
+//   ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json, all in OUT/<name>/
 //   and, with options.mesh, ─▶ meshes ─▶ the exports (pipeline/bake_meshes.h)
 // Each stage is a function of the previous stage's value; every file is
 // written atomically, so a failed bake never leaves a file that looks complete.
@@ -14,7 +15,8 @@ namespace rockbake {
 struct BakeOptions {
   std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
   bool mesh = true;                       // --no-mesh turns the mesh stage off
-  bool render = true;                     // --no-render turns the render stage off
+  bool render = true;                     // --no-render turns the render stage off (needs mesh)
+  int render_threads = 0;                 // POV-Ray's threads; 0: all cores
   double load_seconds = 0.0;              // time the caller spent loading the preset
 };
 
