@@ -1,5 +1,7 @@
 #include "mesh/bake_attributes.h"
 
+#include "render/color.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,8 +25,10 @@ Rgb ramp(const std::array<Rgb, N>& stops, float t) {
   return lerp(stops[i], stops[i + 1], t - float(i));
 }
 
+// Palette colours are sRGB; they become scene-linear through the project's
+// OpenColorIO config (SPEC §4), the same transform the render previews invert.
 Rgb srgb(float r, float g, float b) {
-  return {srgbToLinear(r), srgbToLinear(g), srgbToLinear(b)};
+  return srgbToSceneLinear({r, g, b});
 }
 
 void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluvium) {
