@@ -129,22 +129,6 @@ void expectNoDegenerateFaces(const SurfaceMesh& m, double min_area) {
   EXPECT_EQ(bad, 0u) << m.name << ": degenerate triangles";
 }
 
-double signedVolume(const SurfaceMesh& m) {
-  double v = 0;
-  const auto tet = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const auto& p = m.positions[a];
-    const auto& q = m.positions[b];
-    const auto& r = m.positions[c];
-    return (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-            double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-            double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-           6.0;
-  };
-  for (const auto& t : m.triangles) v += tet(t[0], t[1], t[2]);
-  for (const auto& q : m.quads) v += tet(q[0], q[1], q[2]) + tet(q[0], q[2], q[3]);
-  return v;
-}
-
 double voxelVolume(const VoxelRock& rock, Material m) {
   return double(rock.count(m)) * rock.layout.h * rock.layout.h * rock.layout.h;
 }

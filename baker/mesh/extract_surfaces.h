@@ -25,4 +25,7 @@ struct ExtractParams {
 // Throws std::runtime_error if OpenVDB fails.
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params);
 
+// Signed volume enclosed by the triangles and quads (positive when they face outwards).
+double signedVolume(const SurfaceMesh& mesh);
+
 }  // namespace rockbake
