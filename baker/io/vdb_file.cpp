@@ -12,13 +12,13 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "io/atomic_file.h"
+#include "io/openvdb_support.h"
 
 namespace rockbake {
 namespace {
@@ -34,19 +34,6 @@ constexpr std::size_t kUuidLength = 36;
 
 [[noreturn]] void fail(const fs::path& file, const std::string& verb, const std::string& problem) {
   throw std::runtime_error("cannot " + verb + " VDB " + file.string() + ": " + problem);
-}
-
-void initializeOpenVdb() {
-  static std::once_flag once;
-  std::call_once(once, [] { openvdb::initialize(); });
-}
-
-// Index (i, j, k) → layout.center(i, j, k) = origin + (index + ½) h.
-openvdb::math::Transform::Ptr voxelCenterTransform(const GridLayout& layout) {
-  auto transform = openvdb::math::Transform::createLinearTransform(layout.h);
-  const double half = 0.5 * layout.h;
-  transform->postTranslate(openvdb::Vec3d(layout.origin[0] + half, layout.origin[1] + half, layout.origin[2] + half));
-  return transform;
 }
 
 // Dense → sparse. Each 8³ block becomes a leaf in parallel; leaves then join

@@ -1,5 +1,7 @@
 #include "mesh/extract_surfaces.h"
 
+#include "io/openvdb_support.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,20 +19,13 @@ namespace {
 constexpr int kHalfWidth = 3;     // narrow band, voxels each side
 constexpr int kMirrorLayers = 3;  // layers mirrored below the ground before smoothing
 
-openvdb::math::Transform::Ptr voxelTransform(const GridLayout& g) {
-  // Index (i, j, k) maps to the voxel centre layout.center(i, j, k).
-  auto xform = openvdb::math::Transform::createLinearTransform(g.h);
-  xform->postTranslate(openvdb::Vec3d(g.origin[0] + 0.5 * g.h, g.origin[1] + 0.5 * g.h, g.origin[2] + 0.5 * g.h));
-  return xform;
-}
-
 SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name) {
   const GridLayout& g = rock.layout;
   SurfaceMesh mesh;
   mesh.name = name;
 
   auto mask = openvdb::BoolGrid::create(false);
-  mask->setTransform(voxelTransform(g));
+  mask->setTransform(voxelCenterTransform(g));
   {
     auto acc = mask->getAccessor();
     bool any = false;
@@ -119,7 +114,7 @@ double signedVolume(const SurfaceMesh& m) {
 }
 
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params) {
-  openvdb::initialize();
+  initializeOpenVdb();
   AssetMeshes out;
   try {
     tbb::parallel_invoke([&] { out.rock = extractMaterial(rock, Material::Rock, params, "rock"); },

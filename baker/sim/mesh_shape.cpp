@@ -1,6 +1,6 @@
 #include "sim/mesh_shape.h"
 
-#include <mutex>
+#include "io/openvdb_support.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -9,12 +9,10 @@
 namespace rockbake {
 
 std::vector<std::uint8_t> voxelizeMesh(const TriangleMesh& mesh, const GridLayout& g) {
-  static std::once_flag initialized;
-  std::call_once(initialized, [] { openvdb::initialize(); });
+  initializeOpenVdb();
 
   // Index (i, j, k) of the level set is voxel (i, j, k) of the grid: its centre.
-  auto transform = openvdb::math::Transform::createLinearTransform(g.h);
-  transform->postTranslate(openvdb::Vec3d(g.origin[0] + 0.5 * g.h, g.origin[1] + 0.5 * g.h, g.origin[2] + 0.5 * g.h));
+  const auto transform = voxelCenterTransform(g);
   std::vector<openvdb::Vec3s> points;
   points.reserve(mesh.positions.size());
   for (const auto& p : mesh.positions) points.push_back(transform->worldToIndex(openvdb::Vec3d(p[0], p[1], p[2])));
