@@ -320,7 +320,7 @@ TEST(MeshAttributes, CurvaturePaletteRedConvexBlueConcave) {
       ASSERT_LT(c[0], c[2]);
     }
   }
-  EXPECT_NEAR(srgbToLinear(linearToSrgb(0.3f)), 0.3f, 1e-5f);
+  EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-5f);  // sRGB mid-grey
 }
 
 TEST(MeshAttributes, NaturalPaletteDarkensWithDurability) {

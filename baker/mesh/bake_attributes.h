@@ -47,8 +47,7 @@ PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake);
 //              blended towards the colluvium colour by coverage
 AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params);
 
-// sRGB transfer function, both ways, on [0, 1].
-float srgbToLinear(float c);
+// The sRGB transfer function on [0, 1]: how PLY and OBJ store colours.
 float linearToSrgb(float c);
 
 }  // namespace rockbake
