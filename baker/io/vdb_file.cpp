@@ -156,7 +156,7 @@ typename GridT::Ptr readLayoutGrid(openvdb::io::File& vdb, const std::string& na
 
 }  // namespace
 
-void writeRockVdb(const VoxelRock& rock, const fs::path& file) {
+void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf* rock_sdf) {
   initializeOpenVdb();
   checkArrays(rock, file);
   const GridLayout& layout = rock.layout;
@@ -185,8 +185,11 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file) {
                                                                         return rock.material[cell] == Material::Rock;
                                                                       }),
                                       "durability", *transform);
-    // closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
-    auto sdfGrid = openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
+    // The mesh stage's field is shared with it, so it is written from a shallow copy under our name.
+    // Otherwise closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
+    openvdb::FloatGrid::Ptr sdfGrid =
+        rock_sdf && rock_sdf->grid ? rock_sdf->grid->copy()
+                                   : openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 

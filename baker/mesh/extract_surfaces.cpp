@@ -19,7 +19,8 @@ namespace {
 constexpr int kHalfWidth = 3;     // narrow band, voxels each side
 constexpr int kMirrorLayers = 3;  // layers mirrored below the ground before smoothing
 
-SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name) {
+SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
+                            openvdb::FloatGrid::Ptr* field) {
   const GridLayout& g = rock.layout;
   SurfaceMesh mesh;
   mesh.name = name;
@@ -70,6 +71,8 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
         }
   }
 
+  if (field) *field = sdf;
+
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
@@ -113,12 +116,15 @@ double signedVolume(const SurfaceMesh& m) {
   return v;
 }
 
-AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params) {
+AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
+                            std::shared_ptr<const SmoothedSdf>* rock_sdf) {
   initializeOpenVdb();
   AssetMeshes out;
+  openvdb::FloatGrid::Ptr rock_field;
   try {
-    tbb::parallel_invoke([&] { out.rock = extractMaterial(rock, Material::Rock, params, "rock"); },
-                         [&] { out.colluvium = extractMaterial(rock, Material::Colluvium, params, "colluvium"); });
+    tbb::parallel_invoke(
+        [&] { out.rock = extractMaterial(rock, Material::Rock, params, "rock", rock_sdf ? &rock_field : nullptr); },
+        [&] { out.colluvium = extractMaterial(rock, Material::Colluvium, params, "colluvium", nullptr); });
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(std::string("mesh extraction failed: ") + e.what());
   }
@@ -129,6 +135,7 @@ AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params) 
     for (const auto& p : m->positions)
       for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   if (!out.rock.positions.empty() || !out.colluvium.positions.empty()) out.bounds_min = lo, out.bounds_max = hi;
+  if (rock_sdf) *rock_sdf = rock_field ? std::make_shared<const SmoothedSdf>(SmoothedSdf{rock_field}) : nullptr;
   return out;
 }
 

@@ -11,10 +11,14 @@
 // half a voxel) and no vertex lies below it. The ground itself is not meshed.
 #pragma once
 
+#include <memory>
+
 #include "mesh/surface_mesh.h"
 #include "sim/voxel_rock.h"
 
 namespace rockbake {
+
+struct SmoothedSdf;  // io/openvdb_support.h
 
 struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)
@@ -22,8 +26,12 @@ struct ExtractParams {
 
 // Positions (world units, z up), triangles and quads of both surfaces, no
 // attributes or normals yet; an empty SurfaceMesh where a material is absent.
+// With `rock_sdf`, also hands back the rock's smoothed, ground-clipped level set
+// (index space = voxel (x, y, z), as the mesh's zero crossing; null without rock),
+// so the VDB export carries the field the mesh was made from.
 // Throws std::runtime_error if OpenVDB fails.
-AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params);
+AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
+                            std::shared_ptr<const SmoothedSdf>* rock_sdf = nullptr);
 
 // Signed volume enclosed by the triangles and quads (positive when they face outwards).
 double signedVolume(const SurfaceMesh& mesh);

@@ -83,16 +83,19 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   summary.cycles = int(weathered.cycles.size());
   summary.final_rock = weathered.rock.count(Material::Rock);
 
-  writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
-  stages["write_vdb"] = clock.lap();
-
-  if (options.mesh) {
+  if (!options.mesh) {
+    writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
+    stages["write_vdb"] = clock.lap();
+  } else {
     const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, summary.asset_dir);
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
     stages["mesh_attributes"] = meshes.attributes_seconds;
     stages["export"] = meshes.export_seconds;
     clock.lap();
+    // rock_sdf in the VDB is the field the meshes were made from.
+    writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb", meshes.rock_sdf.get());
+    stages["write_vdb"] = clock.lap();
 
     if (options.render) {
       RenderRequest request;

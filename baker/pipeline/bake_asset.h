@@ -1,7 +1,8 @@
 // BakeAsset: the recipe. One validated preset in, one asset folder out:
-//   preset ─▶ initial rock ─▶ weathering cycles ─▶ rock.vdb ─▶ meshes and exports
-//   ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json, all in OUT/<name>/
-//   and, with options.mesh, ─▶ meshes ─▶ the exports (pipeline/bake_meshes.h)
+//   preset ─▶ initial rock ─▶ weathering cycles ─▶ meshes and exports
+//   (pipeline/bake_meshes.h) ─▶ rock.vdb (rock_sdf = the meshes' smoothed
+//   field) ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json, all in
+//   OUT/<name>/; with --no-mesh, rock.vdb (occupancy rock_sdf) and stats.json
 // Each stage is a function of the previous stage's value; every file is
 // written atomically, so a failed bake never leaves a file that looks complete.
 #pragma once

@@ -35,7 +35,7 @@ bool wants(const Preset& preset, const char* format) {
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   MeshStageResult r;
   auto clock = std::chrono::steady_clock::now();
-  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing});
+  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &r.rock_sdf);
   r.extract_seconds = since(clock);
 
   const std::vector<float> exposure = exposureField(rock, preset);

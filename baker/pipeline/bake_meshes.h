@@ -4,10 +4,11 @@
 //   ply  rock.ply, colluvium.ply (one surface each; colluvium only if any)
 //   obj  rock.obj + rock.mtl (both surfaces, one object each)
 //   glb  rock.glb (both surfaces, one node each), and rock_lod1.glb, … per mesh.lods ratio
-// (`vdb` is written by the recipe before this stage.) Every file is atomic.
+// (`rock.vdb` is written by the recipe after this stage, with `rock_sdf`.) Every file is atomic.
 #pragma once
 
 #include <filesystem>
+#include <memory>
 
 #include "mesh/surface_mesh.h"
 #include "preset/preset.h"
@@ -15,8 +16,11 @@
 
 namespace rockbake {
 
+struct SmoothedSdf;  // io/openvdb_support.h
+
 struct MeshStageResult {
-  AssetMeshes meshes;  // subdivided, attributed, coloured
+  AssetMeshes meshes;                           // subdivided, attributed, coloured
+  std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
   double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, export_seconds = 0;
 };
 
