@@ -20,14 +20,26 @@ for p in "${packages[@]}"; do
   fi
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#packages[@]} packages present"
-  exit 0
+# Node.js runs the Khronos glTF validator in the tests. A machine may already
+# have a Node.js of its own (not Debian's package): any `node` with `npm` will do.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
 fi
 
-echo "setup: installing ${missing[*]}"
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+else
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The glTF validator, pinned by scripts/gltf-validator/package-lock.json.
+validator_dir="$(dirname "$0")/gltf-validator"
+if [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
+  echo "setup: installing the glTF validator (npm)"
+  (cd "$validator_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
