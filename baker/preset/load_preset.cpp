@@ -19,6 +19,7 @@
 
 #include "io/mesh_reader.h"
 #include "sim/voxel_rock.h"
+#include "util/did_you_mean.h"
 #include "util/error.h"
 
 namespace rockbake {
@@ -57,21 +58,6 @@ struct Source {
   const std::string& file() const { return origins.front().file; }
   const std::filesystem::path& folder() const { return origins.front().folder; }
 };
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string joinKeys(const std::vector<std::string>& keys) {
   std::string out;
@@ -159,14 +145,10 @@ class Field {
                   "keep one of them");
       seen.emplace_back(key, entry.first.Mark());
       if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string best;
-      std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-      for (const auto& candidate : allowed)
-        if (const std::size_t d = editDistance(key, candidate); d < best_distance) best_distance = d, best = candidate;
       Field bad(entry.first, join(key), *source_, markOrParent());
-      const std::string problem = best_distance <= std::max<std::size_t>(2, key.size() / 3)
-                                      ? "unknown key '" + key + "'; did you mean '" + best + "'?"
-                                      : "unknown key '" + key + "'";
+      const std::optional<std::string> best = closestName(key, allowed);
+      const std::string problem =
+          best ? "unknown key '" + key + "'; did you mean '" + *best + "'?" : "unknown key '" + key + "'";
       // An unknown key does not change how the others read: linting lists every one.
       InputError error(bad.location(), bad.path(), problem, "valid keys here: " + joinKeys(allowed));
       if (!source_->problems) throw error;
