@@ -81,7 +81,6 @@ durability:
   points: [[0.0, 1.0], [1.0, 1.4]]
   noise:
     - {amplitude: 0.3, period: 0.5, octaves: 2}
-    - null
 time: 0.3
 mesh: {smoothing: 1.0, subdivision: 1, lods: [0.5]}
 export: [ply, obj, glb, vdb]
