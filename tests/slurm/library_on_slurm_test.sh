@@ -121,24 +121,27 @@ jobs=(cube-s3 cube-s4 column-soft column-hard)
 cluster_start "$work/cluster" || die "the single-node Slurm cluster did not come up"
 pass "single-node Slurm cluster up after $((SECONDS - started)) s ($(sinfo -h -N -o '%N %c CPUs %T' | head -n 1))"
 
-ids=$("$source_dir/deploy/slurm/submit.sh" --parsable --shards 4 --cpus-per-task 1 \
+submit=$source_dir/deploy/slurm/submit.sh
+logs=$work/cluster-out.slurm-logs
+
+# expect_completed JOBID COUNT WHAT: COUNT tasks of JOBID completed with exit status 0.
+expect_completed() {
+  local n
+  n=$(scontrol -o show job "$1" | grep -c 'JobState=COMPLETED .*ExitCode=0:0' || true)
+  [ "$n" = "$2" ] || die "$3: expected $2 task(s) COMPLETED with exit 0, got $n: $(scontrol -o show job "$1")"
+  pass "$3: $2 task(s) COMPLETED, exit 0"
+}
+
+ids=$("$submit" --parsable --shards 4 --cpus-per-task 1 \
   --rockbake "$rockbake" "$work/library/library.yaml" "$work/cluster-out") \
   || die "deploy/slurm/submit.sh could not submit the library"
 read -r array_id index_id <<<"$ids"
 echo "array job $array_id, index job $index_id"
-cluster_wait_jobs 400 "$array_id" "$index_id" || die "the Slurm jobs did not finish within 400 s"
-
-# Every array task and the merge job completed with exit status 0.
-completed=$(scontrol -o show job "$array_id" | grep -c 'JobState=COMPLETED .*ExitCode=0:0' || true)
-[ "$completed" = 4 ] && pass "4 array tasks COMPLETED, exit 0" \
-  || die "expected 4 array tasks COMPLETED with exit 0, got $completed: $(scontrol -o show job "$array_id")"
-scontrol -o show job "$index_id" | grep -q 'JobState=COMPLETED .*ExitCode=0:0' && pass "index job COMPLETED, exit 0" \
-  || die "the index job did not complete: $(scontrol -o show job "$index_id")"
-cluster_seconds=$((SECONDS - started))
-cluster_stop
+cluster_wait_jobs 300 "$array_id" "$index_id" || die "the Slurm jobs did not finish within 300 s"
+expect_completed "$array_id" 4 "array job"
+expect_completed "$index_id" 1 "index job"
 
 # Each task baked its own shard: rockbake in task i says it baked shard i/4.
-logs=$work/cluster-out.slurm-logs
 for i in 0 1 2 3; do
   log=$logs/shard-${array_id}_$i.out
   if grep -q -- "(shard $i/4 of 4)" "$log" 2>/dev/null; then
@@ -147,6 +150,31 @@ for i in 0 1 2 3; do
     fail_check "array task $i: no 'shard $i/4' in $log"
   fi
 done
+
+# A lost shard: as if task 2's node died while baking its job (column-soft,
+# job 2 of 4), the folder has no manifest and a missing render. Re-running just
+# that task bakes it again and leaves the other shards' assets alone.
+stamps() { stat -c '%n %i %Y' "$work"/cluster-out/{cube-s3,cube-s4,column-hard}/manifest.json; }
+before=$(stamps)
+rm "$work/cluster-out/column-soft/manifest.json" "$work/cluster-out/column-soft/render.png"
+ids=$("$submit" --parsable --shards 4 --tasks 2 --cpus-per-task 1 \
+  --rockbake "$rockbake" "$work/library/library.yaml" "$work/cluster-out") \
+  || die "deploy/slurm/submit.sh could not submit the re-run of task 2"
+read -r rerun_id rerun_index_id <<<"$ids"
+cluster_wait_jobs 200 "$rerun_id" "$rerun_index_id" || die "the re-run did not finish within 200 s"
+expect_completed "$rerun_id" 1 "re-run of task 2"
+expect_completed "$rerun_index_id" 1 "index job after the re-run"
+rerun_log=$logs/shard-${rerun_id}_2.out
+if grep -q -- "(shard 2/4 of 4)" "$rerun_log" && [ -f "$work/cluster-out/column-soft/manifest.json" ] \
+  && [ -f "$work/cluster-out/column-soft/render.png" ]; then
+  pass "the re-run task baked shard 2/4 again: column-soft"
+else
+  fail_check "the re-run task did not bake shard 2/4's one job again: $(cat "$rerun_log")"
+fi
+[ "$(stamps)" = "$before" ] && pass "the re-run left the other shards' assets untouched" \
+  || fail_check "the re-run rewrote other shards' manifests"
+cluster_seconds=$((SECONDS - started))
+cluster_stop
 
 # ---------------------------------------------------------------- on one machine
 timeout 300 "$rockbake" library "$work/library/library.yaml" -o "$work/local-out" --jobs 2 --threads 2 \

@@ -167,15 +167,18 @@ CONF
 }
 
 cluster_wait_jobs() { # SECONDS JOBID...: 0 once no job is queued or running, 1 on timeout
-  local seconds=$1 deadline queued
+  local seconds=$1 deadline queued ids
   shift
   deadline=$((SECONDS + seconds))
-  local ids
   ids=$(
     IFS=,
     echo "$*"
   )
   while ((SECONDS < deadline)); do
+    if ! cluster_alive "$CLUSTER_CTLD_PID" || ! cluster_alive "$CLUSTER_SLURMD_PID"; then
+      cluster_log "a Slurm daemon exited while jobs $ids were queued or running"
+      return 1
+    fi
     if queued=$(timeout 10 squeue -h -j "$ids" -o %i 2>/dev/null); then
       [ -z "$queued" ] && return 0
     fi
