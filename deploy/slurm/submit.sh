@@ -97,7 +97,7 @@ else
   [ ${#positional[@]} -eq 2 ] || fail "expected LIBRARY.yaml and OUT, got ${#positional[@]} argument(s)"
   library=${positional[0]}
   out=${positional[1]}
-  [ -f "$library" ] && [ -r "$library" ] || fail "library '$library' is not a readable file"
+  { [ -f "$library" ] && [ -r "$library" ]; } || fail "library '$library' is not a readable file"
   library=$(realpath "$library")
 fi
 

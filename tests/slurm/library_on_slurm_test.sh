@@ -39,7 +39,7 @@ done
 [ ${#missing[@]} -eq 0 ] || die "missing ${missing[*]}: run scripts/setup.sh as root (it installs slurmctld slurmd slurm-client munge jq openimageio-tools)"
 [ -x "$rockbake" ] || die "rockbake executable '$rockbake' not found"
 
-# shellcheck source=single_node_cluster.sh
+# shellcheck source=tests/slurm/single_node_cluster.sh
 source "$source_dir/tests/slurm/single_node_cluster.sh"
 
 work=$(mktemp -d /tmp/rockbake-slurm-test.XXXXXX)
@@ -171,8 +171,11 @@ if grep -q -- "(shard 2/4 of 4)" "$rerun_log" && [ -f "$work/cluster-out/column-
 else
   fail_check "the re-run task did not bake shard 2/4's one job again: $(cat "$rerun_log")"
 fi
-[ "$(stamps)" = "$before" ] && pass "the re-run left the other shards' assets untouched" \
-  || fail_check "the re-run rewrote other shards' manifests"
+if [ "$(stamps)" = "$before" ]; then
+  pass "the re-run left the other shards' assets untouched"
+else
+  fail_check "the re-run rewrote other shards' manifests"
+fi
 cluster_seconds=$((SECONDS - started))
 cluster_stop
 
@@ -189,8 +192,8 @@ cd "$work"
 a=cluster-out
 b=local-out
 for job in "${jobs[@]}"; do
-  [ -f "$a/$job/manifest.json" ] && [ -f "$b/$job/manifest.json" ] \
-    || fail_check "$job: a manifest.json is missing (cluster: $(ls "$a/$job" 2>&1 | tr '\n' ' '))"
+  { [ -f "$a/$job/manifest.json" ] && [ -f "$b/$job/manifest.json" ]; } \
+    || fail_check "$job: a manifest.json is missing"
 done
 
 files_a=$(cd "$a" && find . -type f | sort)
@@ -241,7 +244,7 @@ done <<<"$files_a"
 meshes=$(grep -c -E '\.(ply|obj|glb|vdb)$' <<<"$files_a" || true)
 [ "$meshes" -ge 16 ] || fail_check "expected at least 16 mesh and VDB files (4 jobs × ply, obj, glb, vdb), found $meshes"
 [ "$images" -ge 9 ] || fail_check "expected at least 9 images (4 jobs × exr + png, and the contact sheet), found $images"
-[ -f "$a/index.json" ] && [ -f "$a/contact_sheet.png" ] || fail_check "the merge step left no index.json and contact_sheet.png"
+{ [ -f "$a/index.json" ] && [ -f "$a/contact_sheet.png" ]; } || fail_check "the merge step left no index.json and contact_sheet.png"
 names=$(jq -r '[.assets[] | select(.status == "ok") | .name] | join(" ")' "$a/index.json" 2>/dev/null || true)
 expected=$(printf '%s\n' "${jobs[@]}" | sort | tr '\n' ' ')
 if [ "$names " = "$expected" ]; then

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # A real single-node Slurm cluster for tests: munged, slurmctld and slurmd on
 # localhost as plain background processes (no systemd), every file under one
 # folder in /tmp, on two free ports. Source it, then:
@@ -24,11 +25,11 @@ cluster_alive() { # PID is running and not a zombie
 }
 
 cluster_stop_pid() { # PID NAME: SIGTERM, up to 10 s, then SIGKILL; reap
-  local pid=$1 name=$2 i
+  local pid=$1 name=$2
   [ -n "$pid" ] || return 0
   if cluster_alive "$pid"; then
     kill -TERM "$pid" 2>/dev/null || true
-    for i in $(seq 1 100); do
+    for _ in $(seq 1 100); do
       cluster_alive "$pid" || break
       sleep 0.1
     done
@@ -57,8 +58,8 @@ cluster_port_used() { # PORT appears as a local port in /proc/net/tcp{,6}
 }
 
 cluster_free_port_pair() { # prints two consecutive free ports in 20000..59999, starting near a PID-derived one
-  local port=$((20000 + ($$ * 37) % 40000)) tries
-  for tries in $(seq 1 200); do
+  local port=$((20000 + ($$ * 37) % 40000))
+  for _ in $(seq 1 200); do
     ((port + 1 < 60000)) || port=20000
     if ! cluster_port_used "$port" && ! cluster_port_used $((port + 1)); then
       echo "$port $((port + 1))"
@@ -82,7 +83,7 @@ cluster_dump_logs() {
 cluster_start() { # DIR
   CLUSTER_DIR=$1
   case "$CLUSTER_DIR" in /tmp/?*) ;; *) cluster_log "cluster folder must be under /tmp, not '$CLUSTER_DIR'"; return 1 ;; esac
-  local ports ctld_port slurmd_port node_hw host sock i state
+  local ports ctld_port slurmd_port node_hw host sock state
   ports=$(cluster_free_port_pair) || { cluster_log "no two free ports in 20000..59999"; return 1; }
   read -r ctld_port slurmd_port <<<"$ports"
 
@@ -137,7 +138,7 @@ CONF
     --pid-file="$CLUSTER_DIR/munge/priv/munged.pid" --seed-file="$CLUSTER_DIR/munge/priv/munged.seed" \
     --log-file="$CLUSTER_DIR/log/munged.log" >"$CLUSTER_DIR/log/munged.out" 2>&1 &
   CLUSTER_MUNGED_PID=$!
-  for i in $(seq 1 100); do
+  for _ in $(seq 1 100); do
     [ -S "$sock" ] && break
     cluster_alive "$CLUSTER_MUNGED_PID" || break
     sleep 0.1
@@ -152,7 +153,7 @@ CONF
     "slurmd $CLUSTER_SLURMD_PID (port $slurmd_port), files in $CLUSTER_DIR"
 
   state=
-  for i in $(seq 1 150); do # up to ~30 s for the node to register
+  for _ in $(seq 1 150); do # up to ~30 s for the node to register
     if ! cluster_alive "$CLUSTER_CTLD_PID" || ! cluster_alive "$CLUSTER_SLURMD_PID"; then
       cluster_log "a Slurm daemon exited at startup"
       return 1
