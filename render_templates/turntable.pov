@@ -29,7 +29,7 @@ background { rgb <0.18, 0.18, 0.18> }
 #declare Fwd = vnormalize(<-Cam.x, 0, -Cam.z>);
 #declare Side = vcross(y, Fwd);
 light_source { Center + Radius * (-6 * Fwd - 4 * Side + 7 * y) color rgb <1.0, 0.96, 0.9> * 1.1
-  area_light Radius * 1.5 * Side, Radius * 1.5 * y, 5, 5 adaptive 1 jitter circular orient }
+  area_light Radius * 1.5 * Side, Radius * 1.5 * y, 5, 5 adaptive 1 circular orient }
 light_source { Center + Radius * (-5 * Fwd + 6 * Side + 1.5 * y) color rgb <0.75, 0.82, 1.0> * 0.3 shadowless }
 light_source { Center + Radius * (6 * Fwd + 1 * Side + 5 * y) color rgb <1, 1, 1> * 0.7 }
 

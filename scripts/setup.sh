@@ -10,7 +10,12 @@ packages=(
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
   libtinygltf-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  povray openimageio-tools
+  povray openimageio-tools jq
+  # A real single-node Slurm cluster for tests/slurm, which starts its own daemons on free
+  # ports with every file in /tmp. The packages' slurmctld and slurmd services never start
+  # (their init scripts need /etc/slurm/slurm.conf, which nothing writes); a system munged,
+  # if one starts, has its own socket and key and does not get in the way.
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()

@@ -409,3 +409,89 @@ TEST(RenderTest, RerenderFromAssetFolderNeedsNoMeshes) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// A stand-in POV-Ray that counts its runs in `runs` (in its working folder)
+// and fails with `message` on the first `failures` of them, then writes its
+// +O output.
+std::filesystem::path flakyPovray(const std::filesystem::path& dir, int failures, const std::string& message) {
+  const auto script = dir / "flaky-povray";
+  test::writeText(script,
+                  "#!/bin/sh\n"
+                  "n=$(cat runs 2>/dev/null || echo 0); n=$((n + 1)); echo $n > runs\n"
+                  "if [ $n -le " +
+                      std::to_string(failures) + " ]; then echo '" + message +
+                      "' >&2; exit 1; fi\n"
+                      "for a in \"$@\"; do case $a in +O*) echo exr > \"${a#+O}\" ;; esac; done\n");
+  std::filesystem::permissions(script, std::filesystem::perms::owner_all);
+  return script;
+}
+
+PovrayJob flakyJob(const std::filesystem::path& dir, const std::filesystem::path& executable) {
+  PovrayJob job;
+  job.working_dir = dir;
+  job.scene = "scene.pov";
+  job.output = "out.exr";
+  job.executable = executable.string();
+  return job;
+}
+
+int runs(const std::filesystem::path& dir) {
+  return std::stoi(test::readBytes(dir / "runs"));
+}
+
+TEST(RenderTest, PovrayWorkerStartupTimeoutIsRetried) {
+  test::TempDir dir;
+  const auto povray = flakyPovray(dir.path(), 2, kWorkerStartupTimeout);
+  EXPECT_NO_THROW(runPovray(flakyJob(dir.path(), povray)));
+  EXPECT_EQ(runs(dir.path()), 3);
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.path() / "out.exr"));
+}
+
+TEST(RenderTest, PovrayWorkerStartupTimeoutGivesUpAfterFourRuns) {
+  test::TempDir dir;
+  const auto povray = flakyPovray(dir.path(), 100, kWorkerStartupTimeout);
+  try {
+    runPovray(flakyJob(dir.path(), povray));
+    FAIL() << "expected a PovrayError";
+  } catch (const PovrayError& e) {
+    EXPECT_NE(std::string(e.what()).find(kWorkerStartupTimeout), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(runs(dir.path()), 4);
+}
+
+TEST(RenderTest, OtherPovrayFailuresAreNotRetried) {
+  test::TempDir dir;
+  const auto povray = flakyPovray(dir.path(), 1, "Possible Parse Error: missing brace");
+  EXPECT_THROW(runPovray(flakyJob(dir.path(), povray)), PovrayError);
+  EXPECT_EQ(runs(dir.path()), 1);
+}
+
+}  // namespace
+}  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// The studio template's soft shadows and the EXR header depend on nothing but
+// the asset: one thread or two, the render and its preview are the same bytes.
+TEST(RenderTest, StudioRenderIsTheSameBytesAtAnyThreadCount) {
+  test::TempDir dir;
+  RenderRequest one = request(dir.path() / "one", "studio", 48, 36);
+  one.params.antialias = 0.3;
+  one.threads = 1;
+  RenderRequest two = one;
+  two.asset_dir = dir.path() / "two";
+  two.threads = 2;
+  const RenderOutputs a = renderAsset(twoLayerRock(2), one);
+  const RenderOutputs b = renderAsset(twoLayerRock(2), two);
+  EXPECT_EQ(test::readBytes(a.render_exr), test::readBytes(b.render_exr));
+  EXPECT_EQ(test::readBytes(a.render_png), test::readBytes(b.render_png));
+  Imf::InputFile file(a.render_exr.string().c_str());
+  EXPECT_EQ(file.header().find("creation"), file.header().end());
+}
+
+}  // namespace
+}  // namespace rockbake

@@ -80,6 +80,9 @@ void writeHalf(const std::filesystem::path& target, const Imf::Header& header, I
 void writeExrWithMetadata(const std::filesystem::path& source, const std::filesystem::path& target,
                           const RenderMetadata& metadata) {
   HalfImage img = readHalf(source);
+  // POV-Ray stamps the time of the render; without it the EXR depends only on
+  // the bake's inputs, so two bakes of one preset give the same bytes.
+  img.header.erase("creation");
   addMetadata(img.header, metadata);
   writeHalf(target, img.header, img.channels, img.pixels);
 }

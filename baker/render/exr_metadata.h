@@ -23,7 +23,8 @@ struct RenderMetadata {
 };
 
 // Re-writes `source` (an EXR) as `target` (may be the same path; written
-// atomically) with the attributes above added to its header.
+// atomically) with the attributes above added to its header and the time
+// stamp ("creation") removed.
 void writeExrWithMetadata(const std::filesystem::path& source, const std::filesystem::path& target,
                           const RenderMetadata& metadata);
 

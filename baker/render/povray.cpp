@@ -10,6 +10,8 @@
 #include <cerrno>
 #include <cstring>
 #include <sstream>
+#include <string_view>
+#include <thread>
 
 namespace rockbake {
 namespace {
@@ -52,7 +54,9 @@ std::vector<std::string> povrayArguments(const PovrayJob& job) {
   return argv;
 }
 
-PovrayResult runPovray(const PovrayJob& job) {
+namespace {
+
+PovrayResult runPovrayOnce(const PovrayJob& job) {
   const std::vector<std::string> args = povrayArguments(job);
   std::vector<char*> argv;
   for (const auto& s : args) argv.push_back(const_cast<char*>(s.c_str()));
@@ -168,6 +172,25 @@ PovrayResult runPovray(const PovrayJob& job) {
   if (!std::filesystem::is_regular_file(out))
     throw PovrayError(where + " exited 0 but wrote no " + out.string() + "; POV-Ray said:\n" + tail(messages, 30));
   return result;
+}
+
+}  // namespace
+
+PovrayResult runPovray(const PovrayJob& job) {
+  // POV-Ray's front end gives its worker threads a few seconds to start and
+  // otherwise gives up before reading the scene ("Timed out waiting for worker
+  // thread startup"), which happens on a loaded machine; the render itself
+  // would have been fine, so that one failure is retried.
+  constexpr int kAttempts = 4;
+  for (int attempt = 1;; ++attempt) {
+    try {
+      return runPovrayOnce(job);
+    } catch (const PovrayError& e) {
+      if (attempt == kAttempts || std::string_view(e.what()).find(kWorkerStartupTimeout) == std::string_view::npos)
+        throw;
+      std::this_thread::sleep_for(std::chrono::milliseconds(250 * attempt));
+    }
+  }
 }
 
 }  // namespace rockbake

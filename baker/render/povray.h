@@ -38,6 +38,10 @@ class PovrayError : public std::runtime_error {
 // The argument vector runPovray passes (argv[0] = executable).
 std::vector<std::string> povrayArguments(const PovrayJob& job);
 
+// POV-Ray's own transient failure on a loaded machine, retried by runPovray
+// (up to 4 attempts) rather than reported.
+inline constexpr const char* kWorkerStartupTimeout = "Timed out waiting for worker thread startup";
+
 PovrayResult runPovray(const PovrayJob& job);
 
 }  // namespace rockbake
