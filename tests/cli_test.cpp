@@ -198,7 +198,8 @@ TEST(Cli, ABadPresetAmongGoodOnesBakesNothing) {
 
 TEST(Cli, EveryShippedPresetIsValid) {
   for (const auto& entry : fs::directory_iterator(test::sourceDir() / "presets")) {
-    if (entry.path().extension() != ".yaml") continue;
+    // base.yaml is a partial house style other presets extend, not a preset of its own.
+    if (entry.path().extension() != ".yaml" || entry.path().filename() == "base.yaml") continue;
     TempDir dir;
     // A coarse, short bake: validation and the whole path, not the look.
     const auto result = runRockbake({"bake", entry.path().string(), "-o", dir.path().string(), "--resolution", "40",

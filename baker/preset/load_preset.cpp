@@ -10,7 +10,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -24,11 +26,36 @@ namespace {
 
 // ---- where values came from ----
 
+// The file that wrote the values under a key path. With `extends`, a merged
+// preset mixes files: yaml-cpp marks carry line and column but not the file.
+struct Origin {
+  std::string key_path;          // "" = the whole document
+  std::string file;              // as named in messages
+  std::filesystem::path folder;  // absolute; relative paths in these values resolve against it
+};
+
+bool underKeyPath(const std::string& path, const std::string& prefix) {
+  return prefix.empty() || path == prefix || path.rfind(prefix + ".", 0) == 0;
+}
+
+// The origin with the longest key path that `path` lies under. origins.front() is the document's.
+const Origin& originOf(const std::vector<Origin>& origins, const std::string& path) {
+  const Origin* best = &origins.front();
+  for (const auto& origin : origins)
+    if (underKeyPath(path, origin.key_path) && origin.key_path.size() > best->key_path.size()) best = &origin;
+  return *best;
+}
+
 struct Source {
-  std::string file;
-  // Key paths replaced on the command line, with the argument that did it
-  // ("--set a.b=1", "--seed 7").
+  std::vector<Origin> origins;  // front(): the preset itself, key path ""
+  // Key paths replaced on the command line, with what to name as their location
+  // ("--set a.b=1", "--seed 7", or a library's "lib.yaml:12:9 (wedge 'tall')").
   std::vector<std::pair<std::string, std::string>> overrides;
+  // Linting: problems are recorded here and validation goes on; null: the first one throws.
+  std::vector<InputError>* problems = nullptr;
+
+  const std::string& file() const { return origins.front().file; }
+  const std::filesystem::path& folder() const { return origins.front().folder; }
 };
 
 std::size_t editDistance(const std::string& a, const std::string& b) {
@@ -88,6 +115,18 @@ class Field {
     throw InputError(location(), path_, problem, hint);
   }
 
+  // The folder a relative path in this value resolves against: that of the file that wrote it (a base
+  // preset's own folder), or the preset's for a value given on the command line.
+  std::filesystem::path folder() const {
+    return overriddenBy() ? source_->folder() : originOf(source_->origins, path_).folder;
+  }
+  std::string relativePathHint() const {
+    if (overriddenBy()) return "paths given on the command line are relative to the preset's folder";
+    const Origin& origin = originOf(source_->origins, path_);
+    if (&origin == &source_->origins.front()) return "paths are relative to the preset's folder";
+    return "paths are relative to the folder of " + origin.file + ", the file that gives them";
+  }
+
   Field at(const std::string& key) const {
     return Field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
   }
@@ -125,9 +164,13 @@ class Field {
       for (const auto& candidate : allowed)
         if (const std::size_t d = editDistance(key, candidate); d < best_distance) best_distance = d, best = candidate;
       Field bad(entry.first, join(key), *source_, markOrParent());
-      if (best_distance <= std::max<std::size_t>(2, key.size() / 3))
-        bad.fail("unknown key '" + key + "'; did you mean '" + best + "'?", "valid keys here: " + joinKeys(allowed));
-      bad.fail("unknown key '" + key + "'", "valid keys here: " + joinKeys(allowed));
+      const std::string problem = best_distance <= std::max<std::size_t>(2, key.size() / 3)
+                                      ? "unknown key '" + key + "'; did you mean '" + best + "'?"
+                                      : "unknown key '" + key + "'";
+      // An unknown key does not change how the others read: linting lists every one.
+      InputError error(bad.location(), bad.path(), problem, "valid keys here: " + joinKeys(allowed));
+      if (!source_->problems) throw error;
+      source_->problems->push_back(std::move(error));
     }
   }
 
@@ -227,18 +270,23 @@ class Field {
   YAML::Mark markOrParent() const {
     return (node_.IsDefined() && !node_.Mark().is_null()) ? node_.Mark() : parent_mark_;
   }
-  SourceLocation location() const {
-    // A value that came from --set is located there, not in the file; so is a key the flag created on
-    // its way ("colluvum" in --set colluvum.yield=0.3), which has no position. The last flag wins.
+  // A value that came from --set is located there, not in the file; so is a key the flag created on
+  // its way ("colluvum" in --set colluvum.yield=0.3), which has no position. The last flag wins.
+  const std::string* overriddenBy() const {
     const bool from_file = node_.IsDefined() && !node_.Mark().is_null();
     for (auto it = source_->overrides.rbegin(); it != source_->overrides.rend(); ++it) {
       const auto& [path, argument] = *it;
-      if (path_ == path || path_.rfind(path + ".", 0) == 0) return {argument, 0, 0};
-      if (!from_file && !path_.empty() && path.rfind(path_ + ".", 0) == 0) return {argument, 0, 0};
+      if (underKeyPath(path_, path)) return &argument;
+      if (!from_file && !path_.empty() && path.rfind(path_ + ".", 0) == 0) return &argument;
     }
+    return nullptr;
+  }
+  SourceLocation location() const {
+    if (const std::string* argument = overriddenBy()) return {*argument, 0, 0};
+    const std::string& file = originOf(source_->origins, path_).file;
     const YAML::Mark mark = markOrParent();
-    if (mark.is_null()) return {source_->file, 0, 0};
-    return {source_->file, mark.line + 1, mark.column + 1};
+    if (mark.is_null()) return {file, 0, 0};
+    return {file, mark.line + 1, mark.column + 1};
   }
 
   YAML::Node node_;
@@ -249,9 +297,10 @@ class Field {
 
 // ---- --set ----
 
-void applyOverride(YAML::Node& root, const std::string& argument, Source& source) {
+// `origin` is what messages name as the override's location: "--set <argument>" by default.
+void applyOverride(YAML::Node& root, const std::string& argument, const std::string& origin, Source& source) {
   const auto bad = [&](const std::string& problem, const std::string& hint = {}) {
-    throw InputError({"--set"}, "", "'" + argument + "': " + problem, hint);
+    throw InputError({origin.empty() ? "--set" : origin}, "", "'" + argument + "': " + problem, hint);
   };
   const std::size_t equals = argument.find('=');
   if (equals == std::string::npos || equals == 0)
@@ -306,7 +355,7 @@ void applyOverride(YAML::Node& root, const std::string& argument, Source& source
   // `time` and `cycles` are alternatives: setting one replaces the other.
   if (keys.size() == 1 && (keys[0] == "time" || keys[0] == "cycles"))
     root.remove(keys[0] == "time" ? "cycles" : "time");
-  source.overrides.emplace_back(path, "--set " + argument);
+  source.overrides.emplace_back(path, origin.empty() ? "--set " + argument : origin);
 }
 
 // ---- sections ----
@@ -432,7 +481,7 @@ DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) 
   return graph;
 }
 
-void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir) {
+void readShape(const Field& f, Preset& p) {
   const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"}, {"center"});
   const Field k = f.at(kind);
   if (kind == "box") {
@@ -455,9 +504,10 @@ void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir)
     k.expectMap({"path", "mode", "height"});
     ImageShape image;
     const std::filesystem::path given = k.at("path").string();
-    image.path = std::filesystem::absolute(given.is_absolute() ? given : base_dir / given).lexically_normal();
+    image.path =
+        std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(image.path))
-      k.at("path").fail("no image file at " + image.path.string(), "paths are relative to the preset's folder");
+      k.at("path").fail("no image file at " + image.path.string(), k.at("path").relativePathHint());
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
                      : ImageMode::Extrude;
@@ -467,9 +517,10 @@ void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir)
     k.expectMap({"path", "scale"});
     MeshShape mesh;
     const std::filesystem::path given = k.at("path").string();
-    mesh.path = std::filesystem::absolute(given.is_absolute() ? given : base_dir / given).lexically_normal();
+    mesh.path =
+        std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(mesh.path))
-      k.at("path").fail("no mesh file at " + mesh.path.string(), "paths are relative to the preset's folder");
+      k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
     if (k.has("scale")) mesh.scale = k.at("scale").positive();
     // Read it now, so a broken blockout stops the bake before anything is written.
     try {
@@ -489,43 +540,68 @@ void readShape(const Field& f, Preset& p, const std::filesystem::path& base_dir)
   if (f.has("center")) p.shape.center = f.at("center").vec3();
 }
 
+// Runs one part of the validation. Loading stops at the first problem; linting (source.problems set)
+// records it and goes on with the next part, so one run lists every problem.
+template <typename Read>
+void validatePart(const Source& source, Read&& read) {
+  if (!source.problems) return read();
+  try {
+    read();
+  } catch (const InputError& e) {
+    source.problems->push_back(e);
+  }
+}
+
 Preset validate(const YAML::Node& root_node, const Source& source, const std::filesystem::path& file) {
   const Field root(root_node, "", source);
-  root.expectMap({"rockbake", "name", "seed", "extends", "grid", "shape", "durability", "bubbles", "response",
-                  "rockfall", "colluvium", "time", "cycles", "until", "mesh", "bake", "export", "render"});
   Preset p;
   p.file = file;
-  const Field version = root.require("rockbake", "missing 'rockbake: 1' (the schema version)");
-  const long long schema =
-      version.integer(std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
-  if (schema != 1)
-    version.fail("schema version " + std::to_string(schema) + " is not supported; this rockbake reads version 1",
-                 "write rockbake: 1, or use the rockbake the preset was written for");
-  p.schema = 1;
-  if (root.has("extends"))
-    root.at("extends").fail("preset inheritance (extends) is not supported by this version",
-                            "copy the base preset's keys into this one");
+  validatePart(source, [&] {
+    root.expectMap({"rockbake", "name", "seed", "extends", "grid", "shape", "durability", "bubbles", "response",
+                    "rockfall", "colluvium", "time", "cycles", "until", "mesh", "bake", "export", "render"});
+  });
+  validatePart(source, [&] {
+    const Field version = root.require("rockbake", "missing 'rockbake: 1' (the schema version)");
+    const long long schema =
+        version.integer(std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
+    if (schema != 1)
+      version.fail("schema version " + std::to_string(schema) + " is not supported; this rockbake reads version 1",
+                   "write rockbake: 1, or use the rockbake the preset was written for");
+    p.schema = 1;
+  });
+  // The files' `extends` were merged before the overrides; only an override can bring one back.
+  validatePart(source, [&] {
+    if (root.has("extends"))
+      root.at("extends").fail("extends cannot be overridden", "name the base preset in the preset file");
+  });
 
-  p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
-  if (p.name.empty() || !std::all_of(p.name.begin(), p.name.end(), [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
-      }))
-    root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
-  if (root.has("seed")) p.seed = root.at("seed").unsigned64();
+  validatePart(source, [&] {
+    p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
+    if (p.name.empty() || !std::all_of(p.name.begin(), p.name.end(), [](char c) {
+          return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+        }))
+      root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
+  });
+  validatePart(source, [&] {
+    if (root.has("seed")) p.seed = root.at("seed").unsigned64();
+  });
 
-  if (root.has("grid")) {
+  validatePart(source, [&] {
+    if (!root.has("grid")) return;
     const Field g = root.at("grid");
     g.expectMap({"size", "resolution", "ground"});
     if (g.has("size")) p.grid.size = g.at("size").positiveVec3();
     if (g.has("resolution")) p.grid.resolution = int(g.at("resolution").integer(8, 2048));
     if (g.has("ground")) p.grid.ground = g.at("ground").boolean();
-  }
+  });
   const double h = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / p.grid.resolution;
 
-  readShape(root.require("shape", "missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}"), p,
-            file.parent_path());
+  validatePart(source, [&] {
+    readShape(root.require("shape", "missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}"), p);
+  });
 
-  if (root.has("durability")) {
+  validatePart(source, [&] {
+    if (!root.has("durability")) return;
     const Field d = root.at("durability");
     p.durability.graph = readGraph(d, {"points", "noise", "keyframes"});
     if (d.has("keyframes")) {
@@ -542,9 +618,10 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
         p.durability.keyframes.push_back(keyframe);
       }
     }
-  }
+  });
 
-  if (root.has("bubbles")) {
+  validatePart(source, [&] {
+    if (!root.has("bubbles")) return;
     const Field bands = root.at("bubbles");
     if (bands.size() == 0) bands.fail("needs at least one band");
     for (std::size_t i = 0; i < bands.size(); ++i) {
@@ -564,7 +641,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     }
     if (p.bubbles.back().up_to != 1.0)
       bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
-  } else {
+  });
+  if (!root.has("bubbles")) {
     // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default,
     // kept within what a bubble may span so a preset without bubbles bakes at every allowed resolution
     // (it is 0.5 voxels at resolution 8 and 128 at 2048).
@@ -575,7 +653,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     p.bubbles = {band};
   }
 
-  if (root.has("response")) {
+  validatePart(source, [&] {
+    if (!root.has("response")) return;
     const Field r = root.at("response");
     const std::string kind = r.oneOf({"power", "threshold", "curve"});
     if (kind == "power") {
@@ -596,9 +675,10 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
       if (p.response.curve.size() < 2 || p.response.curve.front()[0] != 0.0 || p.response.curve.back()[0] != 1.0)
         c.fail("the curve must start at x = 0 and end at x = 1");
     }
-  }
+  });
 
-  if (root.has("rockfall")) {
+  validatePart(source, [&] {
+    if (!root.has("rockfall")) return;
     const Field r = root.at("rockfall");
     r.expectMap({"mode"});
     if (r.has("mode")) {
@@ -607,28 +687,33 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
                         : mode == "crumble" ? RockfallMode::Crumble
                                             : RockfallMode::Off;
     }
-  }
-  if (root.has("colluvium")) {
+  });
+  validatePart(source, [&] {
+    if (!root.has("colluvium")) return;
     const Field c = root.at("colluvium");
     c.expectMap({"yield", "talus_angle", "removal"});
     if (c.has("yield")) p.colluvium.yield = c.at("yield").numberIn(0.0, 1.0);
     if (c.has("talus_angle")) p.colluvium.talus_angle = c.at("talus_angle").numberIn(0.0, 90.0, true, true);
     if (c.has("removal")) p.colluvium.removal = c.at("removal").numberIn(0.0, 1.0);
-  }
+  });
 
-  if (root.has("time") == root.has("cycles"))
-    root.fail(root.has("time") ? "give either 'time' or 'cycles', not both" : "missing 'time' (or 'cycles')",
-              "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution");
-  if (root.has("time")) p.stop.time = root.at("time").positive();
-  if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, 1000000));
-  if (root.has("until")) {
+  validatePart(source, [&] {
+    if (root.has("time") == root.has("cycles"))
+      root.fail(root.has("time") ? "give either 'time' or 'cycles', not both" : "missing 'time' (or 'cycles')",
+                "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution");
+    if (root.has("time")) p.stop.time = root.at("time").positive();
+    if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, 1000000));
+  });
+  validatePart(source, [&] {
+    if (!root.has("until")) return;
     const Field u = root.at("until");
     u.expectMap({"rock_volume_fraction"});
     if (u.has("rock_volume_fraction"))
       p.stop.rock_volume_fraction = u.at("rock_volume_fraction").numberIn(0.0, 1.0, true, true);
-  }
+  });
 
-  if (root.has("mesh")) {
+  validatePart(source, [&] {
+    if (!root.has("mesh")) return;
     const Field m = root.at("mesh");
     m.expectMap({"smoothing", "subdivision", "lods"});
     if (m.has("smoothing")) p.mesh.smoothing = m.at("smoothing").numberIn(0.0, 4.0);
@@ -641,8 +726,9 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
         p.mesh.lods.push_back(ratio);
       }
     }
-  }
-  if (root.has("bake")) {
+  });
+  validatePart(source, [&] {
+    if (!root.has("bake")) return;
     const Field b = root.at("bake");
     b.expectMap({"palette", "layers", "colluvium_color"});
     if (b.has("palette")) {
@@ -664,8 +750,9 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
       }
     }
     if (b.has("colluvium_color")) p.bake.colluvium_color = readColor(b.at("colluvium_color"));
-  }
-  if (root.has("export")) {
+  });
+  validatePart(source, [&] {
+    if (!root.has("export")) return;
     const Field e = root.at("export");
     p.exports.clear();
     for (std::size_t i = 0; i < e.size(); ++i) {
@@ -674,8 +761,9 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
         e.item(i).fail("'" + format + "' is listed twice");
       p.exports.push_back(format);
     }
-  }
-  if (root.has("render")) {
+  });
+  validatePart(source, [&] {
+    if (!root.has("render")) return;
     const Field r = root.at("render");
     r.expectMap({"template", "width", "height", "quality", "antialias", "turntable"});
     if (r.has("template")) p.render.template_name = r.at("template").string();
@@ -688,43 +776,175 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
       t.expectMap({"frames"});
       if (t.has("frames")) p.render.turntable_frames = int(t.at("frames").integer(0, 360));
     }
-  }
+  });
 
   // Refuse a grid this machine cannot hold before anything is allocated.
-  const GridLayout layout = computeGridLayout(p);
-  const std::uint64_t needed = estimateSimulationBytes(layout);
-  const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
-  if (needed > physical / 10 * 6) {
-    const Field where = root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
-    where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
-                   " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine has " +
-                   std::to_string(physical >> 20) + " MiB",
-               "lower grid.resolution (or --resolution)");
-  }
+  validatePart(source, [&] {
+    const GridLayout layout = computeGridLayout(p);
+    const std::uint64_t needed = estimateSimulationBytes(layout);
+    const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+    if (needed > physical / 10 * 6) {
+      const Field where =
+          root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
+      where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
+                     " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine has " +
+                     std::to_string(physical >> 20) + " MiB",
+                 "lower grid.resolution (or --resolution)");
+    }
+  });
   return p;
 }
 
-}  // namespace
+// ---- reading files, extends ----
 
-Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
-  Source source{file.string(), {}};
+SourceLocation locationOf(const std::string& file, const YAML::Mark& mark) {
+  if (mark.is_null()) return {file, 0, 0};
+  return {file, mark.line + 1, mark.column + 1};
+}
+
+std::optional<std::string> readText(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The one YAML document of a preset file (`file` names it in messages).
+YAML::Node readDocument(const std::string& yaml_text, const std::string& file) {
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(yaml_text);
   } catch (const YAML::Exception& e) {
-    throw InputError({source.file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1},
-                     "", "malformed YAML: " + e.msg, "check the indentation and brackets there");
+    throw InputError(locationOf(file, e.mark), "", "malformed YAML: " + e.msg,
+                     "check the indentation and brackets there");
   }
   // A second document would be ignored without a word.
-  if (documents.size() > 1) {
-    const YAML::Mark mark = documents[1].Mark();
-    throw InputError({source.file, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1}, "",
+  if (documents.size() > 1)
+    throw InputError(locationOf(file, documents[1].Mark()), "",
                      "a preset holds one YAML document; a second one starts here",
                      "remove the '---' and what follows, or make it a preset file of its own");
+  return documents.empty() ? YAML::Node() : documents.front();
+}
+
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error_a, error_b;
+  const auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
+  const auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
+  return (error_a ? a : canonical_a) == (error_b ? b : canonical_b);
+}
+
+// Copies the base's keys the child does not have into the child (maps deep-merged, the child's keys win;
+// lists and scalars replaced whole) and records which file each copied key path came from.
+void mergeBase(YAML::Node child, const YAML::Node& base, const std::string& path, std::vector<Origin>& origins,
+               const std::vector<Origin>& base_origins) {
+  std::vector<std::pair<std::string, YAML::Mark>> seen;
+  for (const auto& entry : base) {
+    const std::string& base_file = originOf(base_origins, path).file;
+    if (!entry.first.IsScalar())
+      throw InputError(locationOf(base_file, entry.first.Mark()), path,
+                       "expected a key name, found " + describe(entry.first));
+    const std::string key = entry.first.Scalar();
+    const std::string key_path = path.empty() ? key : path + "." + key;
+    // Both of a repeated key would merge into one: report it as loading a single file does.
+    const auto first = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == key; });
+    if (first != seen.end())
+      throw InputError(locationOf(originOf(base_origins, key_path).file, entry.first.Mark()), key_path,
+                       "'" + key + "' is given twice (first on line " + std::to_string(first->second.line + 1) + ")",
+                       "keep one of them");
+    seen.emplace_back(key, entry.first.Mark());
+
+    std::optional<YAML::Node> mine;
+    for (auto child_entry : child)
+      if (child_entry.first.IsScalar() && child_entry.first.Scalar() == key) {
+        mine = child_entry.second;
+        break;
+      }
+    if (!mine) {
+      child[key] = entry.second;
+      origins.push_back({key_path, originOf(base_origins, key_path).file, originOf(base_origins, key_path).folder});
+      for (const auto& origin : base_origins)
+        if (origin.key_path.size() > key_path.size() && underKeyPath(origin.key_path, key_path))
+          origins.push_back(origin);
+    } else if (mine->IsMap() && entry.second.IsMap()) {
+      mergeBase(*mine, entry.second, key_path, origins, base_origins);
+    }
   }
-  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
-  if (!root.IsMap()) throw InputError({source.file, 1, 1}, "", "a preset must be a YAML map (key: value, ...)");
-  for (const auto& argument : overrides.sets) applyOverride(root, argument, source);
+}
+
+// Replaces `root`'s `extends` by the merged base chain. `file` is absolute; `name` names it in messages;
+// `chain` collects the files read, this one first. `origins` receives which file wrote each key path.
+void resolveExtends(YAML::Node root, const std::string& name, const std::filesystem::path& file,
+                    std::vector<std::filesystem::path>& chain, std::vector<Origin>& origins) {
+  namespace fs = std::filesystem;
+  origins = {{"", name, file.parent_path()}};
+  chain.push_back(file);
+  std::optional<YAML::Node> value;
+  YAML::Mark key_mark;
+  for (const auto& entry : root)
+    if (entry.first.IsScalar() && entry.first.Scalar() == "extends") {
+      value = entry.second;
+      key_mark = entry.first.Mark();
+      break;
+    }
+  if (!value) return;
+  const SourceLocation here =
+      locationOf(name, value->IsDefined() && !value->IsNull() && !value->Mark().is_null() ? value->Mark() : key_mark);
+  if (!value->IsScalar() || value->Scalar().empty())
+    throw InputError(here, "extends", "expected the path of a base preset, found " + describe(*value),
+                     "for example extends: base.yaml (relative to this file)");
+  const fs::path written = value->Scalar();
+  const fs::path base_file = (written.is_absolute() ? written : file.parent_path() / written).lexically_normal();
+  const std::string base_name =
+      written.is_absolute() ? written.string() : (fs::path(name).parent_path() / written).lexically_normal().string();
+
+  for (const auto& earlier : chain)
+    if (sameFile(earlier, base_file)) {
+      std::string cycle;
+      for (const auto& f : chain) cycle += f.lexically_relative(chain.front().parent_path()).string() + " → ";
+      cycle += base_file.lexically_relative(chain.front().parent_path()).string();
+      throw InputError(here, "extends", "the base presets form a cycle: " + cycle, "remove one of these extends");
+    }
+
+  const std::optional<std::string> text = readText(base_file);
+  if (!text)
+    throw InputError(here, "extends", "no base preset at " + base_file.string(),
+                     "extends paths are relative to the folder of " + name);
+  YAML::Node base;
+  try {
+    base = readDocument(*text, base_name);
+  } catch (const InputError& e) {
+    throw InputError(here, "extends", "cannot use the base preset: " + std::string(e.what()));
+  }
+  if (!base.IsMap())
+    throw InputError(here, "extends", "the base preset " + base_name + " is not a YAML map (key: value, ...)");
+
+  std::vector<Origin> base_origins;
+  resolveExtends(base, base_name, base_file, chain, base_origins);
+  root.remove("extends");
+  mergeBase(root, base, "", origins, base_origins);
+}
+
+// A preset read, merged with its bases and overridden, before validation.
+struct PresetTree {
+  YAML::Node root;
+  Source source;
+  std::vector<std::filesystem::path> files;  // the preset, then its bases
+};
+
+PresetTree readPresetTree(const std::string& yaml_text, const std::filesystem::path& file,
+                          const PresetOverrides& overrides) {
+  PresetTree tree;
+  const std::string name = file.string();
+  tree.root = readDocument(yaml_text, name);
+  if (!tree.root.IsMap()) throw InputError({name, 1, 1}, "", "a preset must be a YAML map (key: value, ...)");
+  resolveExtends(tree.root, name, std::filesystem::absolute(file).lexically_normal(), tree.files, tree.source.origins);
+
+  YAML::Node& root = tree.root;
+  Source& source = tree.source;
+  for (std::size_t i = 0; i < overrides.sets.size(); ++i)
+    applyOverride(root, overrides.sets[i], i < overrides.set_origins.size() ? overrides.set_origins[i] : "", source);
   if (overrides.seed) {
     root["seed"] = *overrides.seed;
     source.overrides.emplace_back("seed", "--seed " + std::to_string(*overrides.seed));
@@ -734,15 +954,47 @@ Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& fi
     if (root["grid"].IsMap()) root["grid"]["resolution"] = *overrides.resolution;
     source.overrides.emplace_back("grid.resolution", "--resolution " + std::to_string(*overrides.resolution));
   }
-  return validate(root, source, std::filesystem::absolute(file));
+  return tree;
+}
+
+std::string readPresetFile(const std::filesystem::path& file) {
+  const std::optional<std::string> text = readText(file);
+  if (!text) throw InputError({file.string()}, "", "cannot read the preset file", "check the path");
+  return *text;
+}
+
+}  // namespace
+
+Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
+  PresetTree tree = readPresetTree(yaml_text, file, overrides);
+  Preset preset = validate(tree.root, tree.source, std::filesystem::absolute(file));
+  preset.sources = std::move(tree.files);
+  return preset;
 }
 
 Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string()}, "", "cannot read the preset file", "check the path");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parsePreset(text.str(), file, overrides);
+  return parsePreset(readPresetFile(file), file, overrides);
+}
+
+std::vector<InputError> lintPreset(const std::filesystem::path& file, const PresetOverrides& overrides) {
+  std::vector<InputError> problems;
+  std::vector<std::string> files;  // in chain order, to list problems file by file
+  try {
+    PresetTree tree = readPresetTree(readPresetFile(file), file, overrides);
+    for (const auto& origin : tree.source.origins)
+      if (std::find(files.begin(), files.end(), origin.file) == files.end()) files.push_back(origin.file);
+    tree.source.problems = &problems;
+    validate(tree.root, tree.source, std::filesystem::absolute(file));
+  } catch (const InputError& e) {
+    problems.push_back(e);
+  }
+  const auto rank = [&](const InputError& e) {
+    return std::tuple(std::size_t(std::find(files.begin(), files.end(), e.where().file) - files.begin()),
+                      e.where().line, e.where().column);
+  };
+  std::stable_sort(problems.begin(), problems.end(),
+                   [&](const InputError& a, const InputError& b) { return rank(a) < rank(b); });
+  return problems;
 }
 
 }  // namespace rockbake

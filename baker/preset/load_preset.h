@@ -1,10 +1,17 @@
 // Reading presets: YAML → validated Preset (SPEC §5, §6).
 //
+// `extends: base.yaml` (relative to the file that says it) merges a base
+// preset under this one: maps are deep-merged with this file's keys winning,
+// lists and scalars are replaced whole, and a base may extend another (a cycle
+// is an error naming the chain). Overrides apply to the merged result, and only
+// that is validated, so a base may be partial.
+//
 // Every problem throws InputError naming the file, line, column (1-based) and
-// key path ("bubbles.0.bubble.sphere.radius"), what is wrong and what to do.
-// Unknown keys are rejected with a "did you mean" suggestion. Relative paths in
-// the preset (shape.image.path) are resolved against the preset's folder and
-// must exist. A grid too large for this machine's memory is refused here,
+// key path ("bubbles.0.bubble.sphere.radius"), what is wrong and what to do; a
+// problem in a value a base preset gave is located in that base. Unknown keys
+// are rejected with a "did you mean" suggestion. Relative paths (shape.image.path,
+// shape.mesh.path) are resolved against the folder of the file that gives them
+// and must exist. A grid too large for this machine's memory is refused here,
 // before anything is allocated.
 #pragma once
 
@@ -15,14 +22,18 @@
 #include <vector>
 
 #include "preset/preset.h"
+#include "util/error.h"
 
 namespace rockbake {
 
 // Command-line overrides, applied after reading the file and before validation.
 struct PresetOverrides {
-  std::vector<std::string> sets;      // "key.path=YAML value", list items by index
+  std::vector<std::string> sets;      // "key.path=YAML value", list items by index, applied in order
   std::optional<std::uint64_t> seed;  // --seed
   std::optional<int> resolution;      // --resolution
+  // Optional, parallel to `sets`: what messages name as the location of sets[i]
+  // (say "lib.yaml:12:9 (wedge 'tall')"). Missing or empty: "--set <argument>".
+  std::vector<std::string> set_origins;
 };
 
 Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& overrides = {});
@@ -30,5 +41,13 @@ Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& over
 // Same, from text in memory; `file` names it in messages and anchors relative paths.
 Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file,
                    const PresetOverrides& overrides = {});
+
+// Every problem of a preset at once, for `rockbake lint`: each part of the
+// schema (grid, shape, bubbles, ...) is checked even when an earlier one
+// failed, and every unknown key is listed. Problems that stop reading (a
+// missing file, malformed YAML, a broken extends chain, a bad --set) come
+// alone. Sorted by file (the preset, then its bases), line and column; empty
+// when the preset is valid, that is when loadPreset would not throw.
+std::vector<InputError> lintPreset(const std::filesystem::path& file, const PresetOverrides& overrides = {});
 
 }  // namespace rockbake

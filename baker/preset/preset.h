@@ -160,8 +160,11 @@ struct RenderParams {
 
 struct Preset {
   std::filesystem::path file;  // where it was read from
-  int schema = 1;              // `rockbake:` version
-  std::string name;            // [a-z0-9_-]+
+  // Every file it was read from, absolute: the preset first, then the bases it
+  // extends, nearest first (what a re-bake must watch for changes).
+  std::vector<std::filesystem::path> sources;
+  int schema = 1;    // `rockbake:` version
+  std::string name;  // [a-z0-9_-]+
   std::uint64_t seed = 0;
   GridParams grid;
   ShapeParams shape;
