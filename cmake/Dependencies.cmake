@@ -9,6 +9,10 @@ find_package(spdlog REQUIRED)
 find_package(fmt REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(PNG REQUIRED)
+# Libraries (SPEC §5): SHA-256 for manifests (OpenSSL's libcrypto); FreeType
+# draws the names on contact sheets, in DejaVu Sans (fonts-dejavu-core).
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
+find_package(Freetype REQUIRED)
 
 # OpenVDB's module lives outside CMake's default search path on Debian, and
 # needs Boost iostreams present to configure.

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git ccache clang-format
   libtbb-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
-  libopenvdb-dev libboost-iostreams-dev libpng-dev
+  libopenvdb-dev libboost-iostreams-dev libpng-dev libssl-dev libfreetype-dev fonts-dejavu-core
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
   libtinygltf-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -71,9 +71,11 @@ TEST(Cli, BakeWritesTheVdbAndStats) {
   for (const char* stage : {"load", "shape", "simulate"}) EXPECT_GE(stats["stages"][stage].get<double>(), 0.0);
   EXPECT_EQ(stats["preset"]["name"], "small");
   EXPECT_EQ(stats["preset"]["grid"]["resolution"], 24);
-  // Nothing but the outputs: no temporary files left behind.
+  // Nothing but the outputs and the manifest: no temporary files left behind.
   for (const auto& entry : fs::directory_iterator(out / "small"))
-    EXPECT_TRUE(entry.path().filename() == "rock.vdb" || entry.path().filename() == "stats.json") << entry.path();
+    EXPECT_TRUE(entry.path().filename() == "rock.vdb" || entry.path().filename() == "stats.json" ||
+                entry.path().filename() == "manifest.json")
+        << entry.path();
 }
 
 TEST(Cli, OverridesReachTheSimulation) {

@@ -1,6 +1,10 @@
 // rockbake's command line (SPEC §6). Exit status: 0 success, 2 bad preset or
 // arguments, 1 any other failure; every failure prints what to fix.
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +21,9 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/bake_asset.h"
+#include "pipeline/library.h"
+#include "pipeline/library_bake.h"
+#include "pipeline/library_index.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
@@ -27,6 +34,7 @@ namespace {
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
+constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report Ctrl-C
 
 struct BakeArgs {
   std::vector<std::string> presets;
@@ -69,6 +77,7 @@ int runBake(const BakeArgs& args) {
     options.render = !args.no_render;
     options.load_seconds = load_seconds[i];
     options.render_threads = args.threads;
+    options.manifest.overrides = overrides;
     const auto summary = rockbake::bakeAsset(presets[i], options);
     spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
@@ -155,6 +164,99 @@ int runPresetShow(const PresetShowArgs& args) {
   return kExitOk;
 }
 
+struct LibraryArgs {
+  std::string library;
+  std::string out_dir = "out";
+  std::string index_only;
+  std::string shard;
+  int jobs = 1;
+  int threads = 0;
+  std::vector<std::string> sets;
+  std::optional<int> resolution;
+  bool no_mesh = false;
+  bool no_render = false;
+};
+
+std::atomic<bool> library_interrupted{false};
+
+extern "C" void onLibraryInterrupt(int) {
+  library_interrupted.store(true);
+}
+
+// SIGINT / SIGTERM: finish cleanly (no new jobs; running ones stop at the next stage boundary). The
+// handler is one-shot, so a second Ctrl-C ends the process at once.
+void installLibraryInterruptHandlers() {
+  struct sigaction action {};
+  action.sa_handler = onLibraryInterrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+// `rockbake library`: every job of a library file (or of one shard of it), then the index. Exit status 0 when
+// every job baked or was already complete, 1 when any failed, 130 when interrupted, 2 for a bad library file
+// or bad arguments (nothing is written then).
+int runLibrary(const LibraryArgs& args, bool verbose) {
+  namespace fs = std::filesystem;
+  if (!args.index_only.empty()) {
+    if (!fs::is_directory(args.index_only))
+      throw rockbake::InputError({args.index_only}, "", "not a folder", "give the OUT folder the shards baked into");
+    const auto counts = rockbake::writeLibraryIndex(args.index_only, {}, {{"index_only", true}});
+    spdlog::info("{}: {} assets ok, {} failed", (fs::path(args.index_only) / rockbake::kIndexFile).string(),
+                 counts.ok + counts.skipped_resumed, counts.failed);
+    return kExitOk;
+  }
+  if (args.library.empty())
+    throw rockbake::InputError({"<command line>"}, "", "a library file is needed (or --index-only OUT)",
+                               "rockbake library LIBRARY.yaml -o OUT");
+  // Everything the command line and the library file say is checked before anything is written.
+  const rockbake::Shard shard = args.shard.empty() ? rockbake::Shard{} : rockbake::parseShard(args.shard);
+  const rockbake::Library library = rockbake::loadLibrary(args.library);
+  const auto all_jobs = rockbake::expandLibrary(library);
+  const auto jobs = rockbake::selectShard(all_jobs, shard);
+
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (args.threads > 0)
+    thread_limit =
+        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
+  rockbake::LibraryBakeOptions options;
+  options.out_dir = args.out_dir;
+  options.jobs = args.jobs;
+  options.threads = args.threads;
+  options.sets = args.sets;
+  options.resolution = args.resolution;
+  options.mesh = !args.no_mesh;
+  options.render = !args.no_render && !args.no_mesh;
+  options.cancel = &library_interrupted;
+  options.terminal = ::isatty(STDERR_FILENO) == 1;
+  spdlog::info("{}: {} jobs{}, {} at once → {}", args.library, jobs.size(),
+               shard.count > 1 ? fmt::format(" (shard {}/{} of {})", shard.index, shard.count, all_jobs.size()) : "",
+               options.jobs, args.out_dir);
+  // The jobs' own per-cycle logs would bury the progress lines; --verbose brings them back.
+  if (!verbose) spdlog::set_level(spdlog::level::warn);
+  installLibraryInterruptHandlers();
+  const auto result = rockbake::bakeLibrary(library, jobs, options);
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  if (!verbose) spdlog::set_level(spdlog::level::info);
+
+  const std::string summary =
+      fmt::format("{} baked, {} already complete, {} failed{} → {}", result.baked, result.skipped, result.failed,
+                  result.not_run ? fmt::format(", {} not run", result.not_run) : "",
+                  (fs::path(args.out_dir) / rockbake::kIndexFile).string());
+  if (result.cancelled) {
+    spdlog::warn("interrupted: {}; run the same command again to finish", summary);
+    return kExitInterrupted;
+  }
+  if (result.failed > 0) {
+    spdlog::error("{}; see the messages above or index.json", summary);
+    return kExitFailure;
+  }
+  spdlog::info("{}", summary);
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,6 +307,27 @@ int main(int argc, char** argv) {
   preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
       ->check(CLI::Range(8, 2048));
 
+  LibraryArgs library;
+  CLI::App* library_cmd = app.add_subcommand(
+      "library", "Bake every job of a library file (presets × seeds × wedges) into OUT/<job>/, with an index");
+  library_cmd->add_option("library", library.library, "Library YAML file")->check(CLI::ExistingFile);
+  library_cmd->add_option("-o,--out", library.out_dir, "Output folder (default: out)");
+  library_cmd->add_option("--jobs", library.jobs, "Jobs baked at once (default: 1)")->check(CLI::Range(1, 256));
+  library_cmd->add_option("--shard", library.shard, "Bake only shard I of N (I/N, from 0): every N-th job");
+  library_cmd
+      ->add_option("--index-only", library.index_only,
+                   "Only rebuild OUT/index.json and contact_sheet.png from the asset folders in OUT")
+      ->excludes("library")
+      ->excludes("--out")
+      ->excludes("--shard");
+  library_cmd->add_option("--threads", library.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  library_cmd->add_option("--set", library.sets, "Override a key of every job's preset, before its wedge (repeatable)");
+  library_cmd->add_option("--resolution", library.resolution, "Override grid.resolution of every job")
+      ->check(CLI::Range(8, 2048));
+  library_cmd->add_flag("--no-mesh", library.no_mesh, "Skip meshing (and so rendering)");
+  library_cmd->add_flag("--no-render", library.no_render, "Skip rendering");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -222,6 +345,7 @@ int main(int argc, char** argv) {
     if (*render_cmd) return runRender(render);
     if (*lint_cmd) return runLint(lint);
     if (*preset_show_cmd) return runPresetShow(preset_show);
+    if (*library_cmd) return runLibrary(library, verbose);
   } catch (const rockbake::InputError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;

@@ -9,6 +9,8 @@
 #include <string>
 #include <system_error>
 
+#include "io/atomic_file.h"
+
 namespace rockbake {
 namespace {
 
@@ -31,7 +33,10 @@ struct ImageGuard {
 
 }  // namespace
 
-GrayImage readPngGray(const std::filesystem::path& file) {
+namespace {
+
+// Reads any PNG into `format` (PNG_FORMAT_GRAY or PNG_FORMAT_RGB) pixels.
+std::vector<std::uint8_t> readPng(const std::filesystem::path& file, png_uint_32 format, int& width, int& height) {
   // Open it ourselves so a missing file reports the OS reason, not libpng's wording.
   std::unique_ptr<std::FILE, FileCloser> stream(std::fopen(file.c_str(), "rb"));
   if (!stream) fail(file, std::generic_category().message(errno));
@@ -56,16 +61,49 @@ GrayImage readPngGray(const std::filesystem::path& file) {
     fail(file, std::to_string(image.width) + "x" + std::to_string(image.height) + " pixels is too large");
   }
 
-  image.format = PNG_FORMAT_GRAY;
-  GrayImage result;
-  result.width = int(image.width);
-  result.height = int(image.height);
-  result.pixels.assign(PNG_IMAGE_SIZE(image), 0);
+  image.format = format;
+  width = int(image.width);
+  height = int(image.height);
+  std::vector<std::uint8_t> pixels(PNG_IMAGE_SIZE(image), 0);
   const png_color black{0, 0, 0};
-  if (!png_image_finish_read(&image, &black, result.pixels.data(), 0, nullptr)) {
+  if (!png_image_finish_read(&image, &black, pixels.data(), 0, nullptr)) {
     fail(file, std::string("truncated or corrupt image data: ") + image.message);
   }
+  return pixels;
+}
+
+}  // namespace
+
+GrayImage readPngGray(const std::filesystem::path& file) {
+  GrayImage result;
+  result.pixels = readPng(file, PNG_FORMAT_GRAY, result.width, result.height);
   return result;
+}
+
+RgbImage readPngRgb(const std::filesystem::path& file) {
+  RgbImage result;
+  result.pixels = readPng(file, PNG_FORMAT_RGB, result.width, result.height);
+  return result;
+}
+
+void writePngRgb(const std::filesystem::path& file, const RgbImage& image) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
+    throw std::runtime_error("cannot write PNG " + file.string() + ": the image has no pixels or the wrong size");
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(image.width);
+  png.height = png_uint_32(image.height);
+  png.format = PNG_FORMAT_RGB;
+  ImageGuard guard{&png};
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr))
+    throw std::runtime_error("cannot write PNG " + file.string() + ": " + png.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
+    throw std::runtime_error("cannot write PNG " + file.string() + ": " + png.message);
+  bytes.resize(size);
+  writeFileAtomically(file, bytes);
 }
 
 }  // namespace rockbake

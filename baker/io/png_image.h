@@ -1,4 +1,5 @@
-// Reading PNGs for image-based initial shapes (SPEC §2.8: white is rock).
+// PNG images: reading for image-based initial shapes (SPEC §2.8: white is
+// rock); reading and writing 8-bit RGB for previews and contact sheets.
 #pragma once
 
 #include <cstdint>
@@ -20,5 +21,18 @@ struct GrayImage {
 // Throws std::runtime_error naming the file and the problem (missing, not a
 // PNG, truncated or corrupt, too large).
 GrayImage readPngGray(const std::filesystem::path& file);
+
+// 8-bit RGB, row-major, row 0 = top; pixels[3 * (y * width + x) + channel].
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;  // width * height * 3
+};
+
+// Any PNG as 8-bit RGB (alpha composited over black). Errors as readPngGray.
+RgbImage readPngRgb(const std::filesystem::path& file);
+
+// Writes `image` as an 8-bit RGB PNG, atomically (io/atomic_file.h). The bytes
+// depend only on the pixels: no time stamp or other varying chunk.
+void writePngRgb(const std::filesystem::path& file, const RgbImage& image);
 
 }  // namespace rockbake

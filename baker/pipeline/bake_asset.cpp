@@ -55,6 +55,10 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   stages["load"] = options.load_seconds;
   StageClock clock;
   const auto total_start = std::chrono::steady_clock::now();
+  const AssetFolderSnapshot before = beginAssetFolder(summary.asset_dir);
+  const auto check_cancel = [&] {
+    if (options.cancel && options.cancel->load()) throw BakeCancelled();
+  };
 
   VoxelRock initial = buildInitialRock(preset);
   const GridLayout& g = initial.layout;
@@ -66,6 +70,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 
   int last_percent = -1;
   WeatheringResult weathered = weatherRock(std::move(initial), preset, [&](const CycleStats& c) {
+    check_cancel();
     const int percent = 100 * c.cycle / planned;
     if (percent / 10 != last_percent / 10) {
       spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", preset.name, c.cycle, planned, percent,
@@ -83,10 +88,12 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   summary.cycles = int(weathered.cycles.size());
   summary.final_rock = weathered.rock.count(Material::Rock);
 
+  check_cancel();
   writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
   stages["write_vdb"] = clock.lap();
 
   if (options.mesh) {
+    check_cancel();
     const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, summary.asset_dir);
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
@@ -95,6 +102,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
     clock.lap();
 
     if (options.render) {
+      check_cancel();
       RenderRequest request;
       request.asset_dir = summary.asset_dir;
       request.params = preset.render;
@@ -115,7 +123,11 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   stats["cycles"] = cyclesToJson(weathered.cycles);
   stats["stages"] = stages;
   stats["preset"] = presetToJson(preset);
+  check_cancel();
   writeFileAtomically(summary.asset_dir / "stats.json", stats.dump(2) + "\n");
+  const ManifestStats manifest_stats{summary.cycles, summary.initial_rock, summary.final_rock,
+                                     weathered.rock.count(Material::Colluvium)};
+  writeManifest(before, preset, options.manifest, options.mesh, options.render, manifest_stats, {{"stages", stages}});
   return summary;
 }
 

@@ -1,13 +1,17 @@
 // BakeAsset: the recipe. One validated preset in, one asset folder out:
 //   preset ─▶ initial rock ─▶ weathering cycles ─▶ rock.vdb ─▶ meshes and exports
-//   ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json, all in OUT/<name>/
+//   ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json ─▶ manifest.json (last),
+//   all in OUT/<name>/
 //   and, with options.mesh, ─▶ meshes ─▶ the exports (pipeline/bake_meshes.h)
 // Each stage is a function of the previous stage's value; every file is
 // written atomically, so a failed bake never leaves a file that looks complete.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
+#include <stdexcept>
 
+#include "pipeline/manifest.h"
 #include "preset/preset.h"
 
 namespace rockbake {
@@ -18,6 +22,15 @@ struct BakeOptions {
   bool render = true;                     // --no-render turns the render stage off (needs mesh)
   int render_threads = 0;                 // POV-Ray's threads; 0: all cores
   double load_seconds = 0.0;              // time the caller spent loading the preset
+  ManifestInputs manifest;                // what manifest.json records beyond the preset
+  // When set and it turns true, the bake stops at the next cycle or stage
+  // boundary by throwing BakeCancelled, before writing manifest.json.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+class BakeCancelled : public std::runtime_error {
+ public:
+  BakeCancelled() : std::runtime_error("cancelled") {}
 };
 
 struct BakeSummary {

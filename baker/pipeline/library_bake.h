@@ -1,0 +1,62 @@
+// BakeLibrary: every job of a library (or of one shard of it) as a TBB
+// pipeline, one asset folder per job, then the index (SPEC §5).
+//
+//   jobs ─▶ [serial: next job] ─▶ [parallel: load preset, resume check, bakeAsset]
+//        ─▶ [serial: record, progress] ─▶ index.json + contact_sheet.png
+//
+// At most `jobs` jobs run at once (the pipeline's tokens), so at most `jobs`
+// POV-Ray processes; each gets cores / jobs threads. Simulation and meshing
+// are parallel inside each job. Outputs do not depend on `jobs` or `threads`.
+//
+// Resume: a job whose folder holds a complete manifest with the job's input
+// hash (pipeline/manifest.h) is skipped. A job that fails (bad preset, POV-Ray
+// failure) leaves failure.json with its message; the others go on. When
+// `cancel` turns true, no new job starts, running ones stop at their next
+// cycle or stage boundary without a manifest, and the index is written for
+// what finished.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "pipeline/library.h"
+#include "preset/load_preset.h"
+
+namespace rockbake {
+
+struct LibraryBakeOptions {
+  std::filesystem::path out_dir = "out";
+  int jobs = 1;                   // jobs at once, >= 1
+  int threads = 0;                // cores to share among the jobs' POV-Ray runs; 0: all
+  std::vector<std::string> sets;  // --set, applied to every job before its wedge
+  std::optional<int> resolution;  // --resolution
+  bool mesh = true;
+  bool render = true;
+  const std::atomic<bool>* cancel = nullptr;
+  bool terminal = false;  // one updating status line (stderr is a terminal) instead of log lines
+};
+
+struct LibraryBakeResult {
+  int baked = 0;
+  int skipped = 0;
+  int failed = 0;
+  int not_run = 0;  // cancelled before they started or while running
+  bool cancelled = false;
+};
+
+// The overrides one job's preset is loaded with: `sets` (the command line's,
+// then the wedge's), the job's seed, --resolution; and parallel to `sets`,
+// where each came from ("--set ..." or "lib.yaml:12:9 (wedge 'tall')").
+struct JobOverrides {
+  PresetOverrides overrides;
+  std::vector<std::string> set_origins;
+};
+JobOverrides jobOverrides(const LibraryJob& job, const LibraryBakeOptions& options);
+
+LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJob>& jobs,
+                              const LibraryBakeOptions& options);
+
+}  // namespace rockbake

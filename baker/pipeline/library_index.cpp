@@ -1,0 +1,98 @@
+#include "pipeline/library_index.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "io/png_image.h"
+#include "pipeline/manifest.h"
+#include "render/contact_sheet.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+std::optional<json> readJson(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  try {
+    return json::parse(in);
+  } catch (const json::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
+IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::string, std::string>& run_status,
+                              const ordered_json& timings) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(out_dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && !name.empty() && name.front() != '.') names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+
+  IndexCounts counts;
+  ordered_json assets = ordered_json::array();
+  std::set<std::pair<std::string, std::string>> libraries;
+  std::vector<ContactSheetItem> sheet;
+  for (const auto& name : names) {
+    const fs::path dir = out_dir / name;
+    ordered_json asset;
+    asset["name"] = name;
+    json library;
+    if (const auto manifest = readJson(dir / kManifestFile); manifest && manifest->contains("inputs")) {
+      const json& inputs = (*manifest)["inputs"];
+      const auto run = run_status.find(name);
+      const std::string status = run != run_status.end() ? run->second : "ok";
+      (status == "skipped-resumed" ? counts.skipped_resumed : counts.ok) += 1;
+      bool rendered = false;
+      for (const auto& output : manifest->value("outputs", json::array()))
+        rendered = rendered || output.value("path", "") == "render.png";
+      asset["status"] = status;
+      asset["job"] = inputs.value("job", json(nullptr));
+      asset["input_hash"] = inputs.value("input_hash", "");
+      asset["manifest"] = name + "/" + kManifestFile;
+      asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
+      library = inputs.value("library", json(nullptr));
+      sheet.push_back({name, rendered ? dir / "render.png" : fs::path(), "no render"});
+    } else if (const auto failure = readJson(dir / kFailureFile); failure && failure->contains("message")) {
+      counts.failed += 1;
+      asset["status"] = "failed";
+      asset["message"] = (*failure)["message"];
+      asset["job"] = failure->value("inputs", json::object()).value("job", json(nullptr));
+      asset["failure"] = name + "/" + kFailureFile;
+      library = failure->value("inputs", json::object()).value("library", json(nullptr));
+      sheet.push_back({name, fs::path(), "failed"});
+    } else {
+      continue;  // not an asset folder, or a bake that has not finished
+    }
+    if (library.is_object()) libraries.emplace(library.value("file", ""), library.value("sha256", ""));
+    assets.push_back(asset);
+  }
+
+  const bool with_sheet = !sheet.empty();
+  if (with_sheet) writePngRgb(out_dir / kContactSheetFile, makeContactSheet(sheet));
+
+  ordered_json index;
+  index["rockbake_index"] = 1;
+  index["baker_version"] = ROCKBAKE_VERSION;
+  index["libraries"] = ordered_json::array();
+  for (const auto& [file, sha] : libraries) index["libraries"].push_back({{"file", file}, {"sha256", sha}});
+  index["assets"] = assets;
+  index["counts"] = {{"ok", counts.ok}, {"skipped-resumed", counts.skipped_resumed}, {"failed", counts.failed}};
+  index["contact_sheet"] = with_sheet ? json(kContactSheetFile) : json(nullptr);
+  index["timings"] = timings;
+  index["host"] = hostName();
+  writeFileAtomically(out_dir / kIndexFile, index.dump(2) + "\n");
+  return counts;
+}
+
+}  // namespace rockbake
