@@ -18,6 +18,7 @@
 #include "io/png_image.h"
 #include "pipeline/library.h"
 #include "pipeline/manifest.h"
+#include "preset/load_preset.h"
 #include "render/contact_sheet.h"
 #include "test_support.h"
 #include "util/error.h"
@@ -216,6 +217,22 @@ TEST(LibraryFile, ErrorsNameLineColumnAndKeyPath) {
   const std::string clash =
       libraryError(dir, "- preset: small.yaml\n  seeds: [1]\n- preset: small.yaml\n  seeds: [1, 2]\n");
   EXPECT_NE(clash.find("lib.yaml:3:3: 1: job 'small-s1' is also made by entry 0"), std::string::npos) << clash;
+}
+
+TEST(LibraryFile, TheShippedLibraryIsValid) {
+  const fs::path file = test::sourceDir() / "presets" / "libraries" / "showcase.yaml";
+  const auto jobs = expandLibrary(loadLibrary(file));
+  EXPECT_EQ(jobNames(jobs),
+            (std::vector<std::string>{"goblin-base-s7", "goblin-weathered-s7", "goblin-base-s8", "goblin-weathered-s8",
+                                      "hoodoo-cap-s21", "hoodoo-cap-s22", "corner-cavern-base", "corner-cavern-deep"}));
+  // Every job's preset loads with its overrides.
+  const Library library = loadLibrary(file);
+  for (const auto& job : jobs) {
+    PresetOverrides overrides;
+    if (job.wedge) overrides.sets = job.wedge->sets;
+    overrides.seed = job.seed;
+    EXPECT_NO_THROW(loadPreset(library.entries[job.entry].preset_file, overrides)) << job.name;
+  }
 }
 
 TEST(LibraryFile, ShardsSplitTheJobsRoundRobin) {

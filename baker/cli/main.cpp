@@ -313,10 +313,12 @@ int main(int argc, char** argv) {
   library_cmd->add_option("library", library.library, "Library YAML file")->check(CLI::ExistingFile);
   library_cmd->add_option("-o,--out", library.out_dir, "Output folder (default: out)");
   library_cmd->add_option("--jobs", library.jobs, "Jobs baked at once (default: 1)")->check(CLI::Range(1, 256));
-  library_cmd->add_option("--shard", library.shard, "Bake only shard I of N (I/N, from 0): every N-th job");
+  library_cmd->add_option("--shard", library.shard, "Bake only shard I of N (I/N, from 0): every N-th job")
+      ->type_name("I/N");
   library_cmd
       ->add_option("--index-only", library.index_only,
                    "Only rebuild OUT/index.json and contact_sheet.png from the asset folders in OUT")
+      ->type_name("OUT")
       ->excludes("library")
       ->excludes("--out")
       ->excludes("--shard");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <set>
@@ -46,10 +47,24 @@ class Progress {
  public:
   // Log lines go through a copy of the default logger kept at info level, so they show while the
   // jobs' own logs are turned down.
-  Progress(std::size_t total, int jobs, bool terminal)
-      : total_(total), jobs_(jobs), terminal_(terminal), log_(spdlog::default_logger()->clone("library")) {
+  Progress(std::size_t total, int jobs, bool terminal, const std::atomic<bool>* cancel)
+      : total_(total),
+        jobs_(jobs),
+        terminal_(terminal),
+        cancel_(cancel),
+        log_(spdlog::default_logger()->clone("library")) {
     log_->set_level(spdlog::level::info);
+    // On a terminal the status line also ticks between events, so elapsed time and ETA stay current.
+    if (terminal_)
+      ticker_ = std::thread([this] {
+        std::unique_lock lock(mutex_);
+        while (!stopping_) {
+          redraw();
+          tick_.wait_for(lock, std::chrono::seconds(1));
+        }
+      });
   }
+  ~Progress() { finish(); }
 
   void started(const std::string& name) {
     std::lock_guard lock(mutex_);
@@ -85,8 +100,14 @@ class Progress {
   }
 
   void finish() {
-    std::lock_guard lock(mutex_);
-    if (terminal_) std::fprintf(stderr, "\r\033[K"), std::fflush(stderr);
+    {
+      std::lock_guard lock(mutex_);
+      if (stopping_) return;
+      stopping_ = true;
+      if (terminal_) std::fprintf(stderr, "\r\033[K"), std::fflush(stderr);
+    }
+    tick_.notify_all();
+    if (ticker_.joinable()) ticker_.join();
   }
 
  private:
@@ -101,18 +122,24 @@ class Progress {
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     std::string running;
     for (const auto& name : running_) running += (running.empty() ? "" : ", ") + name;
-    std::string line =
-        fmt::format("[{}/{}] {} failed, elapsed {}, ETA {}{}{}", done_, total_, failed_, clockText(elapsed),
-                    baked_ ? clockText(eta()) : std::string("--:--"), running.empty() ? "" : " | ", running);
+    const bool stopping = cancel_ && cancel_->load();
+    std::string line = fmt::format("{}[{}/{}] {} failed, elapsed {}, ETA {}{}{}",
+                                   stopping ? "stopping at the next stage (Ctrl-C again: at once) " : "", done_, total_,
+                                   failed_, clockText(elapsed), baked_ ? clockText(eta()) : std::string("--:--"),
+                                   running.empty() ? "" : " | ", running);
     if (line.size() > 150) line = line.substr(0, 147) + "...";
     std::fprintf(stderr, "\r\033[K%s", line.c_str());
     std::fflush(stderr);
   }
 
   std::mutex mutex_;
+  std::condition_variable tick_;
+  std::thread ticker_;
+  bool stopping_ = false;
   const std::size_t total_;
   const int jobs_;
   const bool terminal_;
+  const std::atomic<bool>* cancel_;
   const std::shared_ptr<spdlog::logger> log_;
   const Clock::time_point start_ = Clock::now();
   std::set<std::string> running_;
@@ -148,7 +175,7 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   fs::create_directories(options.out_dir);
 
-  Progress progress(jobs.size(), jobs_at_once, options.terminal);
+  Progress progress(jobs.size(), jobs_at_once, options.terminal, options.cancel);
   std::vector<JobOutcome> outcomes(jobs.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) outcomes[i].index = i;
 

@@ -79,7 +79,10 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
   }
 
   const bool with_sheet = !sheet.empty();
-  if (with_sheet) writePngRgb(out_dir / kContactSheetFile, makeContactSheet(sheet));
+  if (with_sheet)
+    writePngRgb(out_dir / kContactSheetFile, makeContactSheet(sheet));
+  else
+    fs::remove(out_dir / kContactSheetFile);  // a sheet of assets no longer there
 
   ordered_json index;
   index["rockbake_index"] = 1;

@@ -32,6 +32,7 @@ fs::path presetBase(const Preset& preset, const ManifestInputs& inputs) {
 }
 
 std::string relativeTo(const fs::path& file, const fs::path& base) {
+  if (file.empty()) return {};  // a preset made in memory has no file
   const fs::path relative = fs::absolute(file).lexically_normal().lexically_relative(base);
   return (relative.empty() ? file : relative).generic_string();
 }
