@@ -69,6 +69,33 @@ TEST(PresetExtends, MapsDeepMergeListsAndScalarsAreReplaced) {
   EXPECT_EQ(p.sources, (std::vector<fs::path>{dir.path() / "child.yaml", dir.path() / "base.yaml"}));
 }
 
+// Choosing one of a set of alternatives drops the base's choice instead of merging in beside it.
+TEST(PresetExtends, ChoosingAnAlternativeReplacesTheBasesChoice) {
+  TempDir dir;
+  writeText(dir.path() / "base.yaml",
+            "rockbake: 1\ntime: 1\nshape: {box: {size: [1, 1, 1]}, center: [1, 1, 0]}\nresponse: {threshold: 0.5}\n"
+            "durability:\n  points: [[0, 1], [0.5, 2], [1, 1]]\n  noise: [null, {amplitude: 0.2}]\n");
+  writeText(dir.path() / "child.yaml",
+            "extends: base.yaml\nname: c\ncycles: 4\nshape: {sphere: {radius: 0.5}}\nresponse: {power: 2}\n"
+            "durability: {points: [[0, 3], [1, 3]]}\n");
+  const Preset p = loadPreset(dir.path() / "child.yaml");
+  EXPECT_EQ(*p.stop.cycles, 4);
+  EXPECT_FALSE(p.stop.time.has_value());
+  ASSERT_TRUE(std::holds_alternative<SphereShape>(p.shape.kind));
+  EXPECT_EQ(*p.shape.center, (Vec3d{1, 1, 0}));  // beside the kind: still inherited
+  EXPECT_EQ(p.response.kind, ResponseParams::Kind::Power);
+  EXPECT_EQ(p.durability.graph.points.size(), 2u);
+  EXPECT_TRUE(p.durability.graph.noise.empty());  // the base's noise was for its own three points
+
+  // Noise alone keeps the base's points.
+  writeText(dir.path() / "child.yaml", "extends: base.yaml\nname: c\ndurability: {noise: [{amplitude: 0.1}, null]}\n");
+  const Preset noisy = loadPreset(dir.path() / "child.yaml");
+  EXPECT_EQ(noisy.durability.graph.points.size(), 3u);
+  ASSERT_EQ(noisy.durability.graph.noise.size(), 2u);
+  EXPECT_EQ(noisy.durability.graph.noise[0]->amplitude, 0.1);
+  EXPECT_EQ(*noisy.stop.time, 1.0);
+}
+
 TEST(PresetExtends, AnExtendedPresetResolvesLikeItsFlatCopy) {
   TempDir dir;
   writeText(dir.path() / "base.yaml", kBase);

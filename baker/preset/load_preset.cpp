@@ -835,10 +835,44 @@ bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
   return (error_a ? a : canonical_a) == (error_b ? b : canonical_b);
 }
 
+// Keys a preset gives that replace more of its base than themselves. Alternatives (`time` or `cycles`,
+// the shape's kind, the response's kind): choosing one drops the base's choice, which would otherwise
+// be merged in beside it and refused. New durability points drop the base's noise, one entry per
+// segment of the base's points.
+struct MergeRule {
+  const char* path;                     // the map the rule applies to
+  std::vector<std::string> when_given;  // when the preset gives any of these keys there,
+  std::vector<std::string> drops;       // these keys of the base are not inherited
+};
+const std::vector<MergeRule>& mergeRules() {
+  static const std::vector<std::string> shapes = {"box", "cylinder", "sphere", "inside_corner", "image", "mesh"};
+  static const std::vector<std::string> responses = {"power", "threshold", "curve"};
+  static const std::vector<MergeRule> rules = {{"", {"time", "cycles"}, {"time", "cycles"}},
+                                               {"shape", shapes, shapes},
+                                               {"response", responses, responses},
+                                               {"durability", {"points"}, {"noise"}}};
+  return rules;
+}
+
+// `child_keys`: the keys the preset itself gives in the map at `path`.
+bool droppedByMergeRule(const std::vector<std::string>& child_keys, const std::string& path, const std::string& key) {
+  const auto contains = [](const std::vector<std::string>& keys, const std::string& k) {
+    return std::find(keys.begin(), keys.end(), k) != keys.end();
+  };
+  for (const auto& rule : mergeRules())
+    if (rule.path == path && contains(rule.drops, key))
+      for (const auto& given : rule.when_given)
+        if (contains(child_keys, given)) return true;
+  return false;
+}
+
 // Copies the base's keys the child does not have into the child (maps deep-merged, the child's keys win;
-// lists and scalars replaced whole) and records which file each copied key path came from.
+// lists and scalars replaced whole; mergeRules()) and records which file each copied key path came from.
 void mergeBase(YAML::Node child, const YAML::Node& base, const std::string& path, std::vector<Origin>& origins,
                const std::vector<Origin>& base_origins) {
+  std::vector<std::string> child_keys;
+  for (const auto& entry : child)
+    if (entry.first.IsScalar()) child_keys.push_back(entry.first.Scalar());
   std::vector<std::pair<std::string, YAML::Mark>> seen;
   for (const auto& entry : base) {
     const std::string& base_file = originOf(base_origins, path).file;
@@ -862,6 +896,7 @@ void mergeBase(YAML::Node child, const YAML::Node& base, const std::string& path
         break;
       }
     if (!mine) {
+      if (droppedByMergeRule(child_keys, path, key)) continue;
       child[key] = entry.second;
       origins.push_back({key_path, originOf(base_origins, key_path).file, originOf(base_origins, key_path).folder});
       for (const auto& origin : base_origins)

@@ -2,9 +2,11 @@
 //
 // `extends: base.yaml` (relative to the file that says it) merges a base
 // preset under this one: maps are deep-merged with this file's keys winning,
-// lists and scalars are replaced whole, and a base may extend another (a cycle
-// is an error naming the chain). Overrides apply to the merged result, and only
-// that is validated, so a base may be partial.
+// lists and scalars are replaced whole (a kind chosen among alternatives, such
+// as `cycles` for `time` or `sphere` for `box`, replaces the base's choice),
+// and a base may extend another (a cycle is an error naming the chain).
+// Overrides apply to the merged result, and only that is validated, so a base
+// may be partial.
 //
 // Every problem throws InputError naming the file, line, column (1-based) and
 // key path ("bubbles.0.bubble.sphere.radius"), what is wrong and what to do; a
@@ -33,7 +35,8 @@ struct PresetOverrides {
   std::optional<int> resolution;      // --resolution
   // Optional, parallel to `sets`: what messages name as the location of sets[i]
   // (say "lib.yaml:12:9 (wedge 'tall')"). Missing or empty: "--set <argument>".
-  std::vector<std::string> set_origins;
+  // Last, with a default, so {sets, seed, resolution} still initialises the rest.
+  std::vector<std::string> set_origins = {};
 };
 
 Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& overrides = {});
