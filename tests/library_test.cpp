@@ -197,6 +197,34 @@ TEST(LibraryFile, ExpandsPresetsSeedsAndWedgesInOrder) {
   EXPECT_EQ(library.sha256.size(), 64u);
 }
 
+TEST(LibraryFile, WedgeValuesSurviveTheTripToPresetOverrides) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  const Library library = parseLibrary(R"(- preset: small.yaml
+  wedges:
+    - name: styled
+      set:
+        bake.colluvium_color: '#aa5500'
+        export: [ply, glb]
+        render: {width: 64, height: 48}
+        bubbles.0.bubble: {ellipsoid: {radii: [0.3, 0.3, 0.2]}}
+)",
+                                       dir.path() / "lib.yaml");
+  const auto jobs = expandLibrary(library);
+  ASSERT_EQ(jobs.size(), 1u);
+  PresetOverrides overrides;
+  overrides.sets = jobs[0].wedge->sets;
+  const Preset preset = loadPreset(library.entries[0].preset_file, overrides);
+  ASSERT_TRUE(preset.bake.colluvium_color.has_value());
+  EXPECT_NEAR((*preset.bake.colluvium_color)[0], 0xaa / 255.0, 1e-9);
+  EXPECT_EQ(preset.exports, (std::vector<std::string>{"ply", "glb"}));
+  EXPECT_EQ(preset.render.width, 64);
+  EXPECT_EQ(preset.bubbles[0].bubble.kind, BubbleSpec::Kind::Ellipsoid);
+  EXPECT_NE(
+      libraryError(dir, "- preset: small.yaml\n  wedges: [{name: a, set: {time=1: 2}}]\n").find("is not a key path"),
+      std::string::npos);
+}
+
 TEST(LibraryFile, ErrorsNameLineColumnAndKeyPath) {
   TempDir dir;
   const std::string seeds = libraryError(dir, "- preset: small.yaml\n  seds: [1, 2]\n");

@@ -3,6 +3,7 @@
 #include "pipeline/library.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -167,9 +168,11 @@ LibraryWedge readWedge(const Node& w, const std::string& file_label) {
   for (const Node& key : set.keys({})) {
     const std::string path = key.yaml().Scalar();
     std::stringstream parts(path);
-    bool empty_part = path.empty() || path.back() == '.';
-    for (std::string part; std::getline(parts, part, '.');) empty_part = empty_part || part.empty();
-    if (empty_part)
+    bool bad_path = path.empty() || path.back() == '.' || std::any_of(path.begin(), path.end(), [](char c) {
+                      return c == '=' || std::isspace(static_cast<unsigned char>(c));
+                    });
+    for (std::string part; std::getline(parts, part, '.');) bad_path = bad_path || part.empty();
+    if (bad_path)
       key.fail("'" + path + "' is not a key path", "write dotted keys like colluvium.yield or bubbles.0.spheroidal");
     wedge.sets.push_back(path + "=" + flowText(set.yaml()[path]));
     const SourceLocation where = key.location();

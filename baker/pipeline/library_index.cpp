@@ -1,6 +1,7 @@
 #include "pipeline/library_index.h"
 
 #include <algorithm>
+#include <exception>
 #include <fstream>
 #include <set>
 
@@ -78,11 +79,15 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
     assets.push_back(asset);
   }
 
-  const bool with_sheet = !sheet.empty();
-  if (with_sheet)
-    writePngRgb(out_dir / kContactSheetFile, makeContactSheet(sheet));
-  else
-    fs::remove(out_dir / kContactSheetFile);  // a sheet of assets no longer there
+  // The index is written even when the sheet cannot be (a missing font, a full disk); the error follows it.
+  bool with_sheet = false;
+  std::exception_ptr sheet_error;
+  try {
+    fs::remove(out_dir / kContactSheetFile);  // no stale sheet of other assets, whatever happens below
+    if (!sheet.empty()) writePngRgb(out_dir / kContactSheetFile, makeContactSheet(sheet)), with_sheet = true;
+  } catch (const std::exception&) {
+    sheet_error = std::current_exception();
+  }
 
   ordered_json index;
   index["rockbake_index"] = 1;
@@ -95,6 +100,7 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
   index["timings"] = timings;
   index["host"] = hostName();
   writeFileAtomically(out_dir / kIndexFile, index.dump(2) + "\n");
+  if (sheet_error) std::rethrow_exception(sheet_error);
   return counts;
 }
 

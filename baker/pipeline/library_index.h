@@ -40,8 +40,9 @@ struct IndexCounts {
 };
 
 // Writes OUT/index.json and OUT/contact_sheet.png (when there is at least one
-// asset) atomically. `run_status` maps asset names to "skipped-resumed" for
-// the assets this run found complete; `timings` goes under "timings".
+// asset) atomically. When the sheet cannot be made (no font), the index is
+// still written, with "contact_sheet": null, and the error is thrown after. `run_status` maps asset names to
+// "skipped-resumed" for the assets this run found complete; `timings` goes under "timings".
 IndexCounts writeLibraryIndex(const std::filesystem::path& out_dir,
                               const std::map<std::string, std::string>& run_status,
                               const nlohmann::ordered_json& timings);
