@@ -306,6 +306,7 @@ int main(int argc, char** argv) {
   preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed");
   preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
       ->check(CLI::Range(8, 2048));
+
   LibraryArgs library;
   CLI::App* library_cmd = app.add_subcommand(
       "library", "Bake every job of a library file (presets × seeds × wedges) into OUT/<job>/, with an index");
