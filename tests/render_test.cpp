@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <regex>
 #include <string>
 #include <utility>
 
@@ -358,6 +359,43 @@ TEST(RenderTest, PovrayArgumentsAreExplicit) {
 
 TEST(RenderTest, WorldToPovSwapsYAndZ) {
   EXPECT_EQ(worldToPov({1, 2, 3}), (Vec3{1, 3, 2}));
+}
+
+// One texture per distinct colour; every face corner names the texture of its vertex's colour.
+TEST(RenderTest, MeshIncludeSharesTexturesBetweenVerticesOfOneColour) {
+  // Two colours by hemisphere, and a third on the equator's vertices that differs from the first
+  // only below the rounding step (1/4096): 3 textures would mean no sharing, 2 sharing at that step.
+  const auto colour = [](const Pos& p) {
+    if (std::abs(p[2] - 1.0f) < 1e-4f) return Color{0.5f, 0.25f, 0.125f + 1e-5f};
+    return p[2] > 1.0f ? Color{0.5f, 0.25f, 0.125f} : Color{0.1f, 0.2f, 0.8f};
+  };
+  const AssetMeshes meshes = asset(icosphere(3, {0, 0, 1}, 1.0f, colour));
+  test::TempDir dir;
+  const auto file = dir.path() / "rock_mesh.inc";
+  writeMeshInclude(meshes, file);
+  const std::string text = test::readBytes(file);
+
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(texture_list \{ (\d+),)")));
+  ASSERT_EQ(std::stoul(m[1]), 2u);
+  std::vector<Color> textures;
+  const std::regex texture(R"(rgb <([0-9.e-]+), ([0-9.e-]+), ([0-9.e-]+)>)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), texture); it != std::sregex_iterator(); ++it)
+    textures.push_back({std::stof((*it)[1]), std::stof((*it)[2]), std::stof((*it)[3])});
+  ASSERT_EQ(textures.size(), 2u);
+
+  const std::regex face(R"(<(\d+), (\d+), (\d+)>, (\d+), (\d+), (\d+))");
+  std::size_t faces = 0;
+  const std::size_t faces_at = text.find("face_indices");
+  for (auto it = std::sregex_iterator(text.begin() + std::ptrdiff_t(faces_at), text.end(), face);
+       it != std::sregex_iterator(); ++it, ++faces)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t vertex = std::stoul((*it)[1 + k]), tex = std::stoul((*it)[4 + k]);
+      ASSERT_LT(tex, textures.size());
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(textures[tex][c], meshes.rock.colors[vertex][c], 0.5 / 4095) << "vertex " << vertex;
+    }
+  EXPECT_EQ(faces, meshes.rock.triangles.size());
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include "io/atomic_file.h"
@@ -74,16 +76,34 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
     }
     out << "\n  }\n";
   }
-  out << "  texture_list { " << n;
+  // One texture per distinct colour, not per vertex: POV-Ray builds a texture
+  // object for every entry, and parsing them dominated the render of a large
+  // asset. Colours are rounded to 1/4096 (linear), far below what 8-bit
+  // previews or half-float renders resolve; indices follow first use, so the
+  // file is a function of the mesh alone.
+  std::vector<std::uint32_t> texture_of(n);
+  std::vector<std::array<std::uint32_t, 3>> textures;
+  std::unordered_map<std::uint64_t, std::uint32_t> index_of;
+  index_of.reserve(n / 8 + 1);
+  const auto level = [](float v) { return std::uint64_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 4095.0f)); };
   for (std::size_t i = 0; i < n; ++i) {
-    std::array<float, 3> c = i < mesh.colors.size() ? mesh.colors[i] : std::array<float, 3>{0.18f, 0.18f, 0.18f};
+    const std::array<float, 3> c = i < mesh.colors.size() ? mesh.colors[i] : std::array<float, 3>{0.18f, 0.18f, 0.18f};
+    const std::uint64_t key = level(c[0]) << 24 | level(c[1]) << 12 | level(c[2]);
+    const auto [it, fresh] = index_of.try_emplace(key, std::uint32_t(textures.size()));
+    if (fresh)
+      textures.push_back({std::uint32_t(key >> 24), std::uint32_t(key >> 12 & 4095), std::uint32_t(key & 4095)});
+    texture_of[i] = it->second;
+  }
+  out << "  texture_list { " << textures.size();
+  for (const auto& c : textures) {
     std::snprintf(buf, sizeof buf, ",\n    texture { pigment { rgb <%.6g, %.6g, %.6g> } finish { Rockbake_Finish } }",
-                  c[0], c[1], c[2]);
+                  c[0] / 4095.0, c[1] / 4095.0, c[2] / 4095.0);
     out << buf;
   }
   out << "\n  }\n  face_indices { " << mesh.triangles.size();
   for (const auto& t : mesh.triangles) {
-    std::snprintf(buf, sizeof buf, ",\n    <%u, %u, %u>, %u, %u, %u", t[0], t[1], t[2], t[0], t[1], t[2]);
+    std::snprintf(buf, sizeof buf, ",\n    <%u, %u, %u>, %u, %u, %u", t[0], t[1], t[2], texture_of[t[0]],
+                  texture_of[t[1]], texture_of[t[2]]);
     out << buf;
   }
   out << "\n  }\n}\n";

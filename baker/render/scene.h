@@ -60,9 +60,10 @@ CameraSetup frameCamera(const AssetMeshes& meshes, int width, int height, double
 
 // Writes the mesh2 include (atomically): declares Rockbake_Rock and, when there
 // is colluvium, Rockbake_Colluvium (objects), and Rockbake_Has_Colluvium (0/1).
-// Each vertex gets its own texture in a texture_list (pigment = its linear
-// colour, finish = Rockbake_Finish, which a template may #declare before the
-// #include); faces carry three texture indices, so colours interpolate.
+// Vertex colours go into a texture_list, one texture per distinct colour
+// (pigment = the linear colour rounded to 1/4096, finish = Rockbake_Finish,
+// which a template may #declare before the #include); faces carry their three
+// vertices' texture indices, so colours interpolate.
 void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file);
 
 struct SceneFrame {
