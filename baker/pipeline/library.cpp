@@ -10,37 +10,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "preset/yaml_text.h"
 #include "util/did_you_mean.h"
 #include "util/error.h"
 #include "util/sha256.h"
 
 namespace rockbake {
 namespace {
-
-bool isSafeName(const std::string& name) {
-  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
-  });
-}
-
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    default:
-      return "nothing";
-  }
-}
-
-std::string joinNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 // A node of the library file with its key path and position.
 class Node {
@@ -161,7 +137,7 @@ LibraryWedge readWedge(const Node& w, const std::string& file_label) {
   LibraryWedge wedge;
   const Node name = w.at("name");
   wedge.name = name.string();
-  if (!isSafeName(wedge.name))
+  if (!isAssetName(wedge.name))
     name.fail("'" + wedge.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes part of the asset folder's name");
   if (!w.has("set") || w.at("set").yaml().IsNull()) return wedge;  // a wedge without overrides: the preset as is
   const Node set = w.at("set");
@@ -186,7 +162,7 @@ std::string stemName(const std::filesystem::path& preset) {
   std::string name;
   for (char c : preset.stem().string()) {
     const char lower = (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;
-    name += isSafeName(std::string(1, lower)) ? lower : '-';
+    name += isAssetName(std::string(1, lower)) ? lower : '-';
   }
   return name;
 }
@@ -207,11 +183,11 @@ LibraryEntry readEntry(const Node& e, const std::filesystem::path& base_dir, con
   if (e.has("name")) {
     const Node name = e.at("name");
     entry.name = name.string();
-    if (!isSafeName(entry.name))
+    if (!isAssetName(entry.name))
       name.fail("'" + entry.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes the asset folders' names");
   } else {
     entry.name = stemName(entry.preset_file);
-    if (!isSafeName(entry.name)) preset.fail("cannot make a job name from this file name", "give the entry a 'name'");
+    if (!isAssetName(entry.name)) preset.fail("cannot make a job name from this file name", "give the entry a 'name'");
   }
 
   if (e.has("seeds")) entry.seeds = readSeeds(e.at("seeds"));

@@ -18,6 +18,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "io/mesh_reader.h"
+#include "preset/yaml_text.h"
 #include "sim/voxel_rock.h"
 #include "util/did_you_mean.h"
 #include "util/error.h"
@@ -58,27 +59,6 @@ struct Source {
   const std::string& file() const { return origins.front().file; }
   const std::filesystem::path& folder() const { return origins.front().folder; }
 };
-
-std::string joinKeys(const std::vector<std::string>& keys) {
-  std::string out;
-  for (const auto& k : keys) out += (out.empty() ? "" : ", ") + k;
-  return out;
-}
-
-std::string describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Map:
-      return "a map";
-    case YAML::NodeType::Sequence:
-      return "a list";
-    case YAML::NodeType::Null:
-      return "nothing (null)";
-    case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
-    default:
-      return "nothing";
-  }
-}
 
 std::string formatNumber(double v) {
   std::ostringstream out;
@@ -150,7 +130,7 @@ class Field {
       const std::string problem =
           best ? "unknown key '" + key + "'; did you mean '" + *best + "'?" : "unknown key '" + key + "'";
       // An unknown key does not change how the others read: linting lists every one.
-      InputError error(bad.location(), bad.path(), problem, "valid keys here: " + joinKeys(allowed));
+      InputError error(bad.location(), bad.path(), problem, "valid keys here: " + joinNames(allowed));
       if (!source_->problems) throw error;
       source_->problems->push_back(std::move(error));
     }
@@ -165,8 +145,8 @@ class Field {
     for (const auto& k : kinds)
       if (node_[k].IsDefined()) present.push_back(k);
     if (present.size() != 1)
-      fail(present.empty() ? "needs one of: " + joinKeys(kinds)
-                           : "has " + joinKeys(present) + "; give exactly one of: " + joinKeys(kinds));
+      fail(present.empty() ? "needs one of: " + joinNames(kinds)
+                           : "has " + joinNames(present) + "; give exactly one of: " + joinNames(kinds));
     return present.front();
   }
 
@@ -235,7 +215,7 @@ class Field {
   std::string choice(const std::vector<std::string>& options) const {
     const std::string v = string();
     if (std::find(options.begin(), options.end(), v) == options.end())
-      fail("'" + v + "' is not one of: " + joinKeys(options));
+      fail("'" + v + "' is not one of: " + joinNames(options));
     return v;
   }
   Vec3d positiveVec3() const {
@@ -559,9 +539,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
 
   validatePart(source, [&] {
     p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
-    if (p.name.empty() || !std::all_of(p.name.begin(), p.name.end(), [](char c) {
-          return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
-        }))
+    if (!isAssetName(p.name))
       root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
   });
   validatePart(source, [&] {
