@@ -17,6 +17,7 @@
 
 #include "io/png_image.h"
 #include "pipeline/library.h"
+#include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
 #include "preset/load_preset.h"
 #include "render/contact_sheet.h"
@@ -581,6 +582,18 @@ TEST(Library, FailedJobIsRecordedWhileTheOthersBake) {
   EXPECT_EQ(again["assets"][0]["status"], "ok");
   EXPECT_EQ(again["assets"][1]["status"], "skipped-resumed");
   EXPECT_FALSE(fs::exists(out / "small-bad-s1" / kFailureFile));
+}
+
+TEST(LibraryIndex, ListsAssetsWithNumbersInNaturalOrder) {
+  TempDir dir;
+  // Failed jobs' folders (a failure.json is all they need to be listed); their order is the point here.
+  for (const char* name : {"talus-s10", "talus-s9", "arch-s2", "talus-s011", "talus-s1"})
+    writeText(dir.path() / name / "failure.json", R"({"message": "a bad preset"})");
+  writeLibraryIndex(dir.path(), {}, nlohmann::ordered_json::object());
+  const json index = json::parse(readBytes(dir.path() / "index.json"));
+  std::vector<std::string> names;
+  for (const auto& asset : index.at("assets")) names.push_back(asset.at("name").get<std::string>());
+  EXPECT_EQ(names, (std::vector<std::string>{"arch-s2", "talus-s1", "talus-s9", "talus-s10", "talus-s011"}));
 }
 
 TEST(Manifest, BakeWritesItLastListingWhatItWrote) {

@@ -1,6 +1,7 @@
 #include "pipeline/library_index.h"
 
 #include <algorithm>
+#include <cctype>
 #include <exception>
 #include <fstream>
 #include <set>
@@ -29,6 +30,32 @@ std::optional<json> readJson(const fs::path& file) {
   }
 }
 
+// Names in natural order: runs of digits compare as numbers, so goblin-s9
+// comes before goblin-s10 (then plain text order breaks ties, e.g. s01 / s1).
+bool naturalLess(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    const bool da = std::isdigit(static_cast<unsigned char>(a[i])), db = std::isdigit(static_cast<unsigned char>(b[j]));
+    if (da && db) {
+      std::size_t ie = i, je = j;
+      while (ie < a.size() && std::isdigit(static_cast<unsigned char>(a[ie]))) ++ie;
+      while (je < b.size() && std::isdigit(static_cast<unsigned char>(b[je]))) ++je;
+      // Compare the numbers without their leading zeros: longer is larger, else digit by digit.
+      std::size_t ia = i, jb = j;
+      while (ia + 1 < ie && a[ia] == '0') ++ia;
+      while (jb + 1 < je && b[jb] == '0') ++jb;
+      if (ie - ia != je - jb) return ie - ia < je - jb;
+      if (const int c = a.compare(ia, ie - ia, b, jb, je - jb); c != 0) return c < 0;
+      i = ie, j = je;
+    } else {
+      if (a[i] != b[j]) return a[i] < b[j];
+      ++i, ++j;
+    }
+  }
+  if ((i < a.size()) != (j < b.size())) return j < b.size();
+  return a < b;
+}
+
 }  // namespace
 
 IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::string, std::string>& run_status,
@@ -38,7 +65,7 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
     const std::string name = entry.path().filename().string();
     if (entry.is_directory() && !name.empty() && name.front() != '.') names.push_back(name);
   }
-  std::sort(names.begin(), names.end());
+  std::sort(names.begin(), names.end(), naturalLess);
 
   IndexCounts counts;
   ordered_json assets = ordered_json::array();

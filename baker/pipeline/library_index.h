@@ -5,7 +5,7 @@
 // index.json:
 //   {"rockbake_index": 1, "baker_version",
 //    "libraries": [{file, sha256}, ...],              // distinct, sorted
-//    "assets": [                                      // sorted by name
+//    "assets": [                                      // by name, numbers in natural order (s9 < s10)
 //      {"name", "status": "ok" | "skipped-resumed" | "failed",
 //       "job": {name, preset, wedge, wedge_set, set, seed, resolution},
 //       "input_hash", "manifest": "<name>/manifest.json", "render": "<name>/render.png" | null}
