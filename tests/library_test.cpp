@@ -621,5 +621,26 @@ TEST(Manifest, BakeWritesItLastListingWhatItWrote) {
   for (const auto& file : outputs) EXPECT_LE(fs::last_write_time(out / "small" / file), manifest_time) << file;
 }
 
+// `rockbake render` writes new renders into a finished folder: its manifest follows them, so the folder
+// still reads as complete (a library re-run does not bake it again).
+TEST(Manifest, RerenderUpdatesTheRenderOutputs) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  const fs::path out = dir.path() / "out";
+  ASSERT_EQ(runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--set", "export=[glb]"})
+                .exit_status,
+            0);
+  const std::string render_sha = sha256File(out / "small" / "render.exr");
+  const auto result = runRockbake({"render", (out / "small").string(), "--template", "debug"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  ASSERT_NE(sha256File(out / "small" / "render.exr"), render_sha) << "the debug template renders differently";
+  expectManifestsTrue(out);
+  const json manifest = readJson(out / "small" / kManifestFile);
+  EXPECT_EQ(manifest["rerender"]["template"], "debug");
+  std::set<std::string> outputs;
+  for (const auto& o : manifest["outputs"]) outputs.insert(o["path"].get<std::string>());
+  EXPECT_TRUE(outputs.count("render.exr") && outputs.count("rock.glb") && outputs.count("scene.pov"));
+}
+
 }  // namespace
 }  // namespace rockbake

@@ -24,6 +24,7 @@
 #include "pipeline/library.h"
 #include "pipeline/library_bake.h"
 #include "pipeline/library_index.h"
+#include "pipeline/manifest.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
@@ -122,7 +123,10 @@ int runRender(const RenderArgs& args) {
   request.seed = preset.at("seed").get<std::uint64_t>();
   request.preset_hash = rockbake::presetHash(preset);
   request.threads = args.threads;
+  const rockbake::AssetFolderSnapshot before = rockbake::snapshotAssetFolder(dir);
   const auto out = rockbake::rerenderAsset(request);
+  rockbake::updateManifestOutputs(before,
+                                  args.template_name.empty() ? request.params.template_name : args.template_name);
   spdlog::info("{}: rendered {} in {:.1f} s", request.preset_name, out.render_png.string(), out.seconds_total);
   return kExitOk;
 }

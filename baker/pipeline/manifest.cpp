@@ -133,6 +133,34 @@ AssetFolderSnapshot beginAssetFolder(const fs::path& asset_dir) {
   return {asset_dir, scanFolder(asset_dir)};
 }
 
+AssetFolderSnapshot snapshotAssetFolder(const fs::path& asset_dir) {
+  return {asset_dir, scanFolder(asset_dir)};
+}
+
+void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name) {
+  const fs::path file = before.dir / kManifestFile;
+  if (!fs::is_regular_file(file)) return;
+  ordered_json manifest;
+  {
+    std::ifstream in(file);
+    manifest = ordered_json::parse(in);
+  }
+  std::map<std::string, ordered_json> outputs;
+  for (auto& output : manifest.at("outputs")) outputs[output.at("path").get<std::string>()] = output;
+  for (const auto& [path, stamp] : scanFolder(before.dir)) {
+    const auto old = before.files.find(path);
+    if (old != before.files.end() && old->second.inode == stamp.inode && old->second.mtime_ns == stamp.mtime_ns &&
+        old->second.size == stamp.size)
+      continue;
+    outputs[path] = {{"path", path}, {"size", stamp.size}, {"sha256", sha256File(before.dir / path)}};
+  }
+  manifest["outputs"] = ordered_json::array();
+  for (auto& [path, output] : outputs) manifest["outputs"].push_back(std::move(output));
+  manifest["rerender"] = {{"template", template_name}};
+  manifest["timings"]["rerendered_at"] = utcNow();
+  writeFileAtomically(file, manifest.dump(2) + "\n");
+}
+
 void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& given, bool mesh,
                    bool render, const ManifestStats& stats, const ordered_json& timings) {
   ManifestInputs inputs = given;

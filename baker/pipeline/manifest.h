@@ -89,6 +89,16 @@ struct ManifestStats {
 void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& inputs, bool mesh,
                    bool render, const ManifestStats& stats, const nlohmann::ordered_json& timings);
 
+// What the folder holds now, manifest untouched (for updateManifestOutputs).
+AssetFolderSnapshot snapshotAssetFolder(const std::filesystem::path& asset_dir);
+
+// After `rockbake render` wrote renders into a finished folder: the manifest's
+// outputs get the new sizes and hashes of the files written since `before`
+// (new files are added), and "rerender" records the template, so the manifest
+// keeps describing the folder and a library re-run still finds it complete.
+// A folder without a manifest is left without one.
+void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name);
+
 // True when asset_dir holds a manifest.json that parses, whose input hash is
 // `input_hash`, and whose every listed output exists with its listed size.
 bool isCompleteAsset(const std::filesystem::path& asset_dir, const std::string& input_hash);
