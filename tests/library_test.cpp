@@ -509,6 +509,36 @@ TEST(Library, InterruptStopsCleanlyWithStatus130) {
   expectManifestsTrue(out);
 }
 
+// Ctrl-C during a render: POV-Ray is killed rather than left to finish, and the job leaves no render and no
+// manifest behind.
+TEST(Library, InterruptKillsARunningRender) {
+  TempDir dir;
+  const fs::path lib = writeLibrary(dir, "- preset: small.yaml\n  seeds: [1]\n");
+  const fs::path out = dir.path() / "out";
+  // A render slow enough (seconds) to be interrupted in the middle.
+  const pid_t pid = spawnRockbake({"library", lib.string(), "-o", out.string(), "--set", "render.width=1600", "--set",
+                                   "render.height=1200", "--set", "render.quality=9", "--set", "render.antialias=0.02"},
+                                  dir.path() / "interrupted.log");
+  ASSERT_GT(pid, 0);
+  // scene.pov is written just before POV-Ray starts.
+  bool rendering = false;
+  for (int i = 0; i < 6000 && !rendering; ++i) {
+    rendering = fs::is_regular_file(out / "small-s1" / "scene.pov");
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(rendering) << readBytes(dir.path() / "interrupted.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  const std::string log = readBytes(dir.path() / "interrupted.log");
+  ASSERT_TRUE(WIFEXITED(status)) << log;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << log;
+  EXPECT_FALSE(fs::exists(out / "small-s1" / "render.exr")) << "the render ran to its end:\n" << log;
+  EXPECT_FALSE(fs::exists(out / "small-s1" / kManifestFile));
+  EXPECT_EQ(readJson(out / "index.json")["assets"].size(), 0u);
+}
+
 TEST(Library, ShardsTogetherEqualOneRunAndIndexOnlyMergesThem) {
   TempDir dir;
   const fs::path lib = writeLibrary(dir, R"(- preset: small.yaml

@@ -122,7 +122,7 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
 
   std::string messages;
   constexpr std::size_t kKeep = 256 * 1024;
-  bool timed_out = false;
+  bool timed_out = false, cancelled = false;
   const auto deadline = start + job.timeout;
   char buf[8192];
   while (true) {
@@ -130,6 +130,10 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       timed_out = true;
+      break;
+    }
+    if (job.cancel && job.cancel->load()) {
+      cancelled = true;
       break;
     }
     pollfd p{out_pipe[0], POLLIN, 0};
@@ -142,7 +146,7 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
     messages.append(buf, std::size_t(n));
     if (messages.size() > 2 * kKeep) messages.erase(0, messages.size() - kKeep);
   }
-  if (timed_out) {
+  if (timed_out || cancelled) {
     kill(-pid, SIGKILL);
     kill(pid, SIGKILL);
   }
@@ -155,6 +159,7 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
   result.messages = messages;
 
   const std::string where = "POV-Ray (" + commandLine(args) + ", in " + cwd + ")";
+  if (cancelled) throw PovrayError(where + " was cancelled and killed");
   if (timed_out)
     throw PovrayError(where + " timed out after " + std::to_string(job.timeout.count()) +
                       " s and was killed; last messages:\n" + tail(messages, 30));

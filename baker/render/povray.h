@@ -2,6 +2,7 @@
 // folder as working directory, a timeout, its messages captured.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <stdexcept>
@@ -21,6 +22,11 @@ struct PovrayJob {
   int threads = 1;         // +WT<threads>: POV-Ray's render threads (>= 1)
   std::chrono::seconds timeout{1800};
   std::string executable = "povray";  // looked up on PATH
+  // When set and it turns true, POV-Ray is killed within a second and
+  // runPovray throws PovrayError ("cancelled"). POV-Ray runs in a process
+  // group of its own, so a terminal's Ctrl-C reaches only the baker, which
+  // decides (through this flag) what stops.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct PovrayResult {

@@ -59,6 +59,7 @@ void renderOne(const RenderRequest& r, int threads, const std::filesystem::path&
   job.antialias = r.params.antialias;
   job.threads = threads;
   job.timeout = r.timeout;
+  job.cancel = r.cancel;
   try {
     runPovray(job);
     writeExrWithMetadata(r.asset_dir / tmp_rel, r.asset_dir / exr_rel, md);

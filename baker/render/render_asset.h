@@ -2,6 +2,7 @@
 // preview; optionally a turntable and its contact sheet.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -23,7 +24,8 @@ struct RenderRequest {
   std::uint64_t seed = 0;
   std::string preset_hash;
   int threads = 0;  // POV-Ray's +WT; 0: all hardware threads (call it when the baker's own pool is idle)
-  std::chrono::seconds timeout{1800};  // per POV-Ray run
+  std::chrono::seconds timeout{1800};         // per POV-Ray run
+  const std::atomic<bool>* cancel = nullptr;  // see PovrayJob::cancel
 };
 
 struct RenderOutputs {
