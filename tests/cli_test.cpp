@@ -9,6 +9,7 @@ namespace rockbake {
 namespace {
 
 namespace fs = std::filesystem;
+using test::kSmallPreset;
 using test::readBytes;
 using test::runRockbake;
 using test::TempDir;
@@ -17,20 +18,6 @@ using test::writeText;
 std::string presetPath(const std::string& name) {
   return (test::sourceDir() / "presets" / name).string();
 }
-
-const char* kSmallPreset = R"(rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 24}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-bubbles:
-  - up_to: 1.0
-    bubble: {sphere: {radius: 0.3}}
-    spheroidal: 1.0
-    cavernous: 0.2
-time: 0.5
-)";
 
 TEST(Cli, VersionAndHelpExitZero) {
   const auto version = runRockbake({"--version"});

@@ -35,22 +35,9 @@ using test::runRockbake;
 using test::TempDir;
 using test::writeText;
 
-// h = 2 / 24; time 0.5 → 6 cycles. Fast: a few tens of milliseconds per bake.
-const char* kSmallPreset = R"(rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 24}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-bubbles:
-  - up_to: 1.0
-    bubble: {sphere: {radius: 0.3}}
-    spheroidal: 1.0
-    cavernous: 0.2
-colluvium: {yield: 0.5}
-time: 0.5
-render: {width: 48, height: 36, quality: 2, antialias: 0}
-)";
+// The shared small preset with renders tiny enough to keep library runs fast.
+const std::string kSmallPreset =
+    std::string(test::kSmallPreset) + "render: {width: 48, height: 36, quality: 2, antialias: 0}\n";
 
 // The library folder: small.yaml beside lib.yaml.
 fs::path writeLibrary(const TempDir& dir, const std::string& library_text) {

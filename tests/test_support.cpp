@@ -13,6 +13,20 @@
 
 namespace rockbake::test {
 
+const char* const kSmallPreset = R"(rockbake: 1
+name: small
+seed: 3
+grid: {size: [2.0, 2.0, 2.0], resolution: 24}
+shape:
+  box: {size: [1.5, 1.5, 1.5]}
+bubbles:
+  - up_to: 1.0
+    bubble: {sphere: {radius: 0.3}}
+    spheroidal: 1.0
+    cavernous: 0.2
+time: 0.5
+)";
+
 Preset cubePreset(double cube, int resolution, double bubble_radius) {
   Preset p;
   p.name = "cube";

@@ -11,6 +11,10 @@
 
 namespace rockbake::test {
 
+// A 24-voxel box preset, 6 cycles (time 0.5 at h = 2 / 24): a whole bake in a
+// few tens of milliseconds. Twelve lines, so a key appended to it is on line 13.
+extern const char* const kSmallPreset;
+
 // A free-floating (ground off) cube of `cube` world units in a domain of the
 // same size, resolution `resolution`, one sphere bubble of `bubble_radius`
 // world units, spheroidal only, linear response, uniform durability 1,
