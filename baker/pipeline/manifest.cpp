@@ -92,6 +92,20 @@ std::map<std::string, AssetFolderSnapshot::Stamp> scanFolder(const fs::path& dir
   return files;
 }
 
+// The folder's files written since `before` (new, or replaced: atomic writes give a new inode and time
+// stamp), as manifest outputs {path, size, sha256} by path. Files left from earlier are not among them.
+std::map<std::string, ordered_json> writtenSince(const AssetFolderSnapshot& before) {
+  std::map<std::string, ordered_json> written;
+  for (const auto& [path, stamp] : scanFolder(before.dir)) {
+    const auto old = before.files.find(path);
+    if (old != before.files.end() && old->second.inode == stamp.inode && old->second.mtime_ns == stamp.mtime_ns &&
+        old->second.size == stamp.size)
+      continue;
+    written[path] = {{"path", path}, {"size", stamp.size}, {"sha256", sha256File(before.dir / path)}};
+  }
+  return written;
+}
+
 }  // namespace
 
 std::string hostName() {
@@ -147,13 +161,7 @@ void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string&
   }
   std::map<std::string, ordered_json> outputs;
   for (auto& output : manifest.at("outputs")) outputs[output.at("path").get<std::string>()] = output;
-  for (const auto& [path, stamp] : scanFolder(before.dir)) {
-    const auto old = before.files.find(path);
-    if (old != before.files.end() && old->second.inode == stamp.inode && old->second.mtime_ns == stamp.mtime_ns &&
-        old->second.size == stamp.size)
-      continue;
-    outputs[path] = {{"path", path}, {"size", stamp.size}, {"sha256", sha256File(before.dir / path)}};
-  }
+  for (auto& [path, output] : writtenSince(before)) outputs[path] = std::move(output);
   manifest["outputs"] = ordered_json::array();
   for (auto& [path, output] : outputs) manifest["outputs"].push_back(std::move(output));
   manifest["rerender"] = {{"template", template_name}};
@@ -168,13 +176,7 @@ void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, cons
   if (inputs.preset_file.empty()) inputs.preset_file = relativeTo(preset.file, base);
 
   ordered_json outputs = ordered_json::array();
-  for (const auto& [path, stamp] : scanFolder(before.dir)) {
-    const auto old = before.files.find(path);
-    if (old != before.files.end() && old->second.inode == stamp.inode && old->second.mtime_ns == stamp.mtime_ns &&
-        old->second.size == stamp.size)
-      continue;  // left from an earlier bake, not written by this one
-    outputs.push_back({{"path", path}, {"size", stamp.size}, {"sha256", sha256File(before.dir / path)}});
-  }
+  for (auto& [path, output] : writtenSince(before)) outputs.push_back(std::move(output));
 
   const json resolved = portablePreset(preset, base);
   ordered_json manifest;
