@@ -9,7 +9,6 @@
 #include "io/vdb_file.h"
 #include "pipeline/bake_meshes.h"
 #include "preset/preset_json.h"
-#include "render/povray.h"
 #include "render/render_asset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -114,14 +113,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
       request.preset_hash = presetHash(preset);
       request.threads = options.render_threads;
       request.cancel = options.cancel;
-      const RenderOutputs rendered = [&] {
-        try {
-          return renderAsset(meshes.meshes, request);
-        } catch (const PovrayError&) {
-          check_cancel();  // killed because the bake was cancelled: say so, not "POV-Ray failed"
-          throw;
-        }
-      }();
+      const RenderOutputs rendered = renderAsset(meshes.meshes, request);
       stages["render"] = rendered.seconds_total;
       spdlog::info("{}: rendered {} in {:.1f} s", preset.name, rendered.render_png.string(), rendered.seconds_total);
       clock.lap();
