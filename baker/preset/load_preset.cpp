@@ -192,13 +192,8 @@ class Field {
     return v;
   }
   std::uint64_t unsigned64() const {
-    if (!node_.IsScalar() || node_.Scalar().empty() || node_.Scalar()[0] == '-')
-      fail("expected a whole number >= 0, found " + describe(node_));
-    try {
-      return node_.as<std::uint64_t>();
-    } catch (const YAML::Exception&) {
-      fail("expected a whole number >= 0, found " + describe(node_));
-    }
+    if (const auto value = unsignedValue(node_)) return *value;
+    fail("expected a whole number >= 0, found " + describe(node_));
   }
   bool boolean() const {
     if (!node_.IsScalar()) fail("expected true or false, found " + describe(node_));

@@ -21,6 +21,15 @@ std::string describe(const YAML::Node& node) {
   }
 }
 
+std::optional<std::uint64_t> unsignedValue(const YAML::Node& node) {
+  if (!node.IsScalar() || node.Scalar().empty() || node.Scalar()[0] == '-') return std::nullopt;
+  try {
+    return node.as<std::uint64_t>();
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
+  }
+}
+
 std::string joinNames(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;

@@ -2,6 +2,8 @@
 // so their messages read alike.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,9 @@ namespace rockbake {
 // What a node holds, for "expected …, found …": "a map", "a list",
 // "nothing (null)", "'text'" or "nothing".
 std::string describe(const YAML::Node& node);
+
+// A scalar that is a whole number >= 0 (no sign, fits 64 bits), else nothing.
+std::optional<std::uint64_t> unsignedValue(const YAML::Node& node);
 
 // "a, b, c".
 std::string joinNames(const std::vector<std::string>& names);
