@@ -37,6 +37,12 @@ constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report Ctrl-C
 
+// --threads N: at most N TBB workers while the returned object lives; 0 leaves all cores.
+std::unique_ptr<tbb::global_control> limitThreads(int threads) {
+  if (threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+}
+
 struct BakeArgs {
   std::vector<std::string> presets;
   std::string out_dir = "out";
@@ -49,10 +55,7 @@ struct BakeArgs {
 };
 
 int runBake(const BakeArgs& args) {
-  std::unique_ptr<tbb::global_control> thread_limit;
-  if (args.threads > 0)
-    thread_limit =
-        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
+  const auto thread_limit = limitThreads(args.threads);
   rockbake::PresetOverrides overrides{args.sets, args.seed, args.resolution};
 
   // Every preset is validated before anything is baked, so a typo in the
@@ -220,10 +223,7 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   const auto all_jobs = rockbake::expandLibrary(library);
   const auto jobs = rockbake::selectShard(all_jobs, shard);
 
-  std::unique_ptr<tbb::global_control> thread_limit;
-  if (args.threads > 0)
-    thread_limit =
-        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(args.threads));
+  const auto thread_limit = limitThreads(args.threads);
   rockbake::LibraryBakeOptions options;
   options.out_dir = args.out_dir;
   options.jobs = args.jobs;
