@@ -20,4 +20,13 @@ struct MeshDefects {
 // Triangles only (quads are ignored).
 MeshDefects checkMesh(const SurfaceMesh& mesh);
 
+// Removes fold-overs and zero-area triangles from a closed, edge-manifold
+// triangle mesh by flipping edges: a triangle and its neighbour across an edge
+// become the two triangles across the quad's other diagonal, when both new
+// triangles have area and face the same side as the quad's surroundings, and
+// the new edge does not exist yet. Vertices, attributes and the closed,
+// 2-manifold topology are kept; normals are recomputed. Deterministic (the
+// triangles are visited in index order). Returns the defects left (0 when clean).
+std::size_t repairFoldOvers(SurfaceMesh& mesh);
+
 }  // namespace rockbake
