@@ -12,6 +12,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
+#include "mesh/mesh_checks.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {
@@ -178,11 +179,12 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
   return copies;
 }
 
-// `m` simplified to about `target_triangles` (at least 4); `ratio` only for the log.
-SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio) {
+// `m` simplified to about `target_triangles` (at least 4) or until the error
+// would pass `max_error` (world units), whichever comes first; `ratio` only for the log.
+SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio, double max_error = -1.0) {
   if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
-  const std::size_t target = std::max<std::size_t>(4, target_triangles) * 3;
+  const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
   std::vector<unsigned int> indices(index_count), simplified;
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) indices[3 * t + k] = m.triangles[t][k];
@@ -192,13 +194,17 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
   // target 1 % lower, and keep the better result.
   std::vector<unsigned int> copies;
   std::size_t bad = std::numeric_limits<std::size_t>::max();
+  const float scale = meshopt_simplifyScale(&m.positions[0][0], m.positions.size(), sizeof(std::array<float, 3>));
+  const float relative_error = max_error < 0 || scale <= 0 ? 1.0f : float(max_error / scale);
   for (int attempt = 0; attempt < 2 && bad > 0; ++attempt) {
     const double nudge = attempt == 0 ? 1.0 : 0.99;
-    const std::size_t attempt_target = std::max<std::size_t>(4, std::size_t(double(target / 3) * nudge)) * 3;
+    const std::size_t attempt_target =
+        std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * nudge)) * 3, index_count);
     std::vector<unsigned int> result(index_count);
     float error = 0.0f;
     result.resize(meshopt_simplify(result.data(), indices.data(), index_count, &m.positions[0][0], m.positions.size(),
-                                   sizeof(std::array<float, 3>), attempt_target, 1.0f, meshopt_SimplifyLockBorder,
+                                   sizeof(std::array<float, 3>), attempt_target, relative_error * float(nudge),
+                                   meshopt_SimplifyLockBorder,
                                    &error));
     dropSandwiches(result);
     std::vector<unsigned int> result_copies = splitPinches(result, m.positions);
@@ -233,32 +239,49 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
   out.triangles.reserve(simplified.size() / 3);
   for (std::size_t t = 0; t < simplified.size(); t += 3)
     out.triangles.push_back({remap[simplified[t]], remap[simplified[t + 1]], remap[simplified[t + 2]]});
-  computeVertexNormals(out);
+  // meshoptimizer 0.18 lets a collapse leave a triangle of zero area or one
+  // folded against its neighbours; flip and collapse those away.
+  if (bad == 0) {
+    if (const std::size_t left = repairFoldOvers(out))
+      spdlog::warn("LOD {} of the {} surface keeps {} folded or zero-area triangles", ratio, m.name, left);
+  } else {
+    computeVertexNormals(out);
+  }
   return out;
 }
 
 }  // namespace
 
+AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
+  AssetMeshes lod0;
+  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0.0, max_error); },
+                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0.0, max_error); });
+  lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
+  lod0.durability_range = meshes.durability_range;
+  return lod0;
+}
+
 std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params) {
-  // Each LOD is simplified from the previous one when the ratios decrease,
-  // which is cheaper than starting from the full mesh every time; targets stay
-  // shares of the full mesh. The two surfaces simplify in parallel.
+  // Each LOD is simplified from the previous one (cheaper than starting from
+  // the input every time); targets stay shares of the input. The two surfaces
+  // simplify in parallel.
   std::vector<AssetMeshes> lods;
-  lods.reserve(params.ratios.size());
+  lods.reserve(params.targets.size());
   const AssetMeshes* from = &meshes;
-  double from_ratio = 1.0;
-  const auto target = [](const SurfaceMesh& full, double ratio) {
-    return std::size_t(std::llround(ratio * double(full.triangles.size())));
-  };
-  for (double ratio : params.ratios) {
-    if (ratio >= from_ratio) from = &meshes;
+  const double rock = double(meshes.rock.triangles.size()), colluvium = double(meshes.colluvium.triangles.size());
+  const double total = std::max(1.0, rock + colluvium);
+  for (double target : params.targets) {
+    const double ratio = target >= 1.0 ? target / total : target;
+    const auto count = [&](double full) { return std::size_t(std::llround(ratio * full)); };
+    if (count(rock) > from->rock.triangles.size() || count(colluvium) > from->colluvium.triangles.size())
+      from = &meshes;
     AssetMeshes lod;
-    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, target(meshes.rock, ratio), ratio); },
-                         [&] { lod.colluvium = simplify(from->colluvium, target(meshes.colluvium, ratio), ratio); });
+    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), ratio); },
+                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), ratio); });
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
+    lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));
     from = &lods.back();
-    from_ratio = ratio;
   }
   return lods;
 }

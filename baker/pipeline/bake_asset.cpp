@@ -7,7 +7,9 @@
 
 #include "io/atomic_file.h"
 #include "io/vdb_file.h"
+#include "pipeline/asset_json.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/manifest.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
 #include "sim/shapes.h"
@@ -97,6 +99,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
     stages["mesh_attributes"] = meshes.attributes_seconds;
+    stages["mesh_simplify"] = meshes.simplify_seconds;
     stages["export"] = meshes.export_seconds;
     clock.lap();
     // rock_sdf in the VDB is the field the meshes were made from.
@@ -118,6 +121,18 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
       spdlog::info("{}: rendered {} in {:.1f} s", preset.name, rendered.render_png.string(), rendered.seconds_total);
       clock.lap();
     }
+
+    AssetDescription asset;
+    asset.name = preset.name;
+    asset.tags = preset.tags;
+    asset.units_per_meter = preset.units_per_meter;
+    asset.lods.push_back({meshes.lod_files.at(0), &meshes.meshes});
+    for (std::size_t i = 0; i < meshes.lods.size(); ++i) asset.lods.push_back({meshes.lod_files.at(i + 1), &meshes.lods[i]});
+    asset.preview = options.render ? "render.png" : "";
+    const std::filesystem::path base =
+        options.manifest.base_dir.empty() ? preset.file.parent_path() : options.manifest.base_dir;
+    asset.input_hash = bakeInputHash(preset, options.mesh, options.render, base);
+    writeAssetJson(asset, summary.asset_dir);
   }
 
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count();
