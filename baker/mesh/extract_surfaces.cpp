@@ -1,6 +1,8 @@
 #include "mesh/extract_surfaces.h"
 
-#include "io/openvdb_support.h"
+#include "core/mesh_checks.h"
+
+#include "core/openvdb_support.h"
 #include "mesh/subdivide.h"
 
 #include <algorithm>
@@ -11,8 +13,8 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetFilter.h>
-#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/TopologyToLevelSet.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -21,8 +23,8 @@
 namespace rockbake {
 namespace {
 
-constexpr int kHalfWidth = 3;     // narrow band, voxels each side
-constexpr int kMirrorLayers = 3;  // layers mirrored below the ground before smoothing
+constexpr int kHalfWidth = 3;         // narrow band, voxels each side
+constexpr int kMirrorLayers = 3;      // layers mirrored below the ground before smoothing
 constexpr float kSideMargin = 0.05f;  // voxels: how far inside (outside) a sample of (not of) the material stays
 
 SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
@@ -146,22 +148,6 @@ void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot) {
     meshes.bounds_max[a] = float(double(meshes.bounds_max[a]) - pivot[a]);
 }
 
-double signedVolume(const SurfaceMesh& m) {
-  double v = 0;
-  const auto tet = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const auto& p = m.positions[a];
-    const auto& q = m.positions[b];
-    const auto& r = m.positions[c];
-    return (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-            double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-            double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-           6.0;
-  };
-  for (const auto& t : m.triangles) v += tet(t[0], t[1], t[2]);
-  for (const auto& q : m.quads) v += tet(q[0], q[1], q[2]) + tet(q[0], q[2], q[3]);
-  return v;
-}
-
 void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field_ptr, bool ground) {
   if (!field_ptr) return;
   const SmoothedSdf& field = *field_ptr;
@@ -214,7 +200,8 @@ double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, b
                                 std::pow(u[0] * v[1] - u[1] * v[0], 2));
     }
     if (area <= 0) break;
-    const double delta = std::clamp((target_volume - signedVolume(mesh)) / area, -max_offset - total, max_offset - total);
+    const double delta =
+        std::clamp((target_volume - signedVolume(mesh)) / area, -max_offset - total, max_offset - total);
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       auto& p = mesh.positions[i];
       if (ground && p[2] == 0.0f) continue;
@@ -231,9 +218,8 @@ std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const Smoot
   if (!field || !field->grid || delta == 0.0) return field;
   openvdb::FloatGrid::Ptr moved = field->grid->deepCopy();
   const float d = float(delta);
-  openvdb::tools::foreach (moved->beginValueAll(), [d](const openvdb::FloatGrid::ValueAllIter& it) {
-    it.setValue(*it - d);
-  });
+  openvdb::tools::foreach (moved->beginValueAll(),
+                           [d](const openvdb::FloatGrid::ValueAllIter& it) { it.setValue(*it - d); });
   return std::make_shared<const SmoothedSdf>(SmoothedSdf{moved});
 }
 
@@ -249,13 +235,7 @@ AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(std::string("mesh extraction failed: ") + e.what());
   }
-  std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                          std::numeric_limits<float>::max()};
-  std::array<float, 3> hi{-lo[0], -lo[1], -lo[2]};
-  for (const SurfaceMesh* m : {&out.rock, &out.colluvium})
-    for (const auto& p : m->positions)
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  if (!out.rock.positions.empty() || !out.colluvium.positions.empty()) out.bounds_min = lo, out.bounds_max = hi;
+  updateBounds(out);
   if (rock_sdf) *rock_sdf = rock_field ? std::make_shared<const SmoothedSdf>(SmoothedSdf{rock_field}) : nullptr;
   return out;
 }

@@ -1,3 +1,7 @@
+// The mesh stage takes the simulation's VoxelRock and gives AssetMeshes: this
+// file extracts the surfaces; bake_attributes.h samples and colours them,
+// subdivide.h refines them, simplify_lods.h makes the LODs.
+//
 // Extraction (SPEC §3): the rock and the colluvium of a voxel grid as separate
 // closed, 2-manifold, outward-oriented surfaces, quad-dominant.
 //
@@ -14,8 +18,8 @@
 #include <array>
 #include <memory>
 
-#include "mesh/surface_mesh.h"
-#include "sim/voxel_rock.h"
+#include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 
 namespace rockbake {
 
@@ -42,9 +46,6 @@ std::array<double, 3> footprintPivot(const VoxelRock& rock);
 
 // Translates both surfaces and the bounds by -pivot.
 void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot);
-
-// Signed volume enclosed by the triangles and quads (positive when they face outwards).
-double signedVolume(const SurfaceMesh& mesh);
 
 // Moves every vertex not on the ground cap onto the zero crossing of `field`
 // (two Newton steps along the field's gradient, trilinear samples), so a

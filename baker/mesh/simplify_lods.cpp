@@ -12,7 +12,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
-#include "mesh/mesh_checks.h"
+#include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {
@@ -204,8 +204,7 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
     float error = 0.0f;
     result.resize(meshopt_simplify(result.data(), indices.data(), index_count, &m.positions[0][0], m.positions.size(),
                                    sizeof(std::array<float, 3>), attempt_target, relative_error * float(nudge),
-                                   meshopt_SimplifyLockBorder,
-                                   &error));
+                                   meshopt_SimplifyLockBorder, &error));
     dropSandwiches(result);
     std::vector<unsigned int> result_copies = splitPinches(result, m.positions);
     const std::size_t result_bad = nonManifoldEdges(result);

@@ -6,9 +6,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/hash.h"
 #include "mesh/subdivide.h"
 #include "sim/durability.h"
-#include "util/hash.h"
 
 namespace rockbake {
 

@@ -16,7 +16,7 @@
 
 #include <cstdint>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 #include "preset/preset.h"
 
 namespace rockbake {

@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
-#include "mesh/bake_attributes.h"
+#include "core/atomic_file.h"
+#include "core/colour.h"
 
 namespace rockbake {
 
@@ -43,9 +43,14 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   j["name"] = asset.name;
   j["tags"] = asset.tags;
   j["units_per_meter"] = asset.units_per_meter;
+  // The size of what ships: LOD0's own vertices.
+  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const SurfaceMesh* m : {&lod0.rock, &lod0.colluvium})
+    for (const auto& p : m->positions)
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], double(p[a])), hi[a] = std::max(hi[a], double(p[a]));
   nlohmann::ordered_json size = nlohmann::ordered_json::array();
   for (int a = 0; a < 3; ++a)
-    size.push_back(std::round(1e6 * (double(lod0.bounds_max[a]) - lod0.bounds_min[a]) / asset.units_per_meter) / 1e6);
+    size.push_back(hi[a] >= lo[a] ? std::round(1e6 * (hi[a] - lo[a]) / asset.units_per_meter) / 1e6 : 0.0);
   j["size_m"] = size;
   j["pivot"] = "footprint-centre-on-ground";
   j["up_axis"] = {{"glb", "y"}, {"obj", "y"}, {"ply", "z"}, {"vdb", "z"}};

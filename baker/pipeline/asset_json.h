@@ -18,7 +18,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 
 namespace rockbake {
 

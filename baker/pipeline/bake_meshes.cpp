@@ -1,5 +1,8 @@
 #include "pipeline/bake_meshes.h"
 
+#include "core/mesh_checks.h"
+#include "core/stopwatch.h"
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -8,9 +11,9 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_group.h>
 
-#include "io/glb_file.h"
-#include "io/obj_file.h"
-#include "io/ply_file.h"
+#include "export/glb_file.h"
+#include "export/obj_file.h"
+#include "export/ply_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/simplify_lods.h"
@@ -19,30 +22,20 @@
 #include "sim/weathering.h"
 
 namespace rockbake {
-namespace {
 
-double since(std::chrono::steady_clock::time_point& last) {
-  const auto now = std::chrono::steady_clock::now();
-  const double seconds = std::chrono::duration<double>(now - last).count();
-  last = now;
-  return seconds;
-}
-
-bool wants(const Preset& preset, const char* format) {
+bool exportsFormat(const Preset& preset, const std::string& format) {
   return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
 }
 
-}  // namespace
-
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   MeshStageResult r;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &r.rock_sdf);
-  r.extract_seconds = since(clock);
+  r.extract_seconds = clock.lap();
 
   const std::vector<float> exposure = exposureField(rock, preset);
   meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  r.attributes_seconds = since(clock);
+  r.attributes_seconds = clock.lap();
 
   const SubdivideParams levels{preset.mesh.subdivision};
   meshes.rock = subdivideSurface(meshes.rock, levels);
@@ -55,31 +48,22 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
   matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
   r.rock_sdf = offsetField(r.rock_sdf, delta);
-  r.subdivide_seconds = since(clock);
+  r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
   if (preset.mesh.detail)
-    displaceSurface(meshes.rock, {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max,
-                                  g.ground});
-  meshes.bounds_min = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                       std::numeric_limits<float>::max()};
-  meshes.bounds_max = {std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(),
-                       std::numeric_limits<float>::lowest()};
-  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
-    for (const auto& p : m->positions)
-      for (int a = 0; a < 3; ++a)
-        meshes.bounds_min[a] = std::min(meshes.bounds_min[a], p[a]),
-        meshes.bounds_max[a] = std::max(meshes.bounds_max[a], p[a]);
-  if (meshes.rock.positions.empty() && meshes.colluvium.positions.empty()) meshes.bounds_min = meshes.bounds_max = {};
+    displaceSurface(meshes.rock,
+                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
+  updateBounds(meshes);
   meshes.durability_range = {palette.durability_min, palette.durability_max};
   meshes = applyPalette(std::move(meshes), palette);
   r.pivot = footprintPivot(rock);
   movePivot(meshes, r.pivot);
-  r.attributes_seconds += since(clock);
+  r.attributes_seconds += clock.lap();
 
   r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
   r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h);
-  r.simplify_seconds = since(clock);
+  r.simplify_seconds = clock.lap();
   spdlog::debug("{}: refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, {} triangles",
                 preset.name, r.refined_triangles, r.meshes.rock.positions.size(), r.meshes.rock.triangles.size(),
                 r.meshes.colluvium.positions.size(), r.meshes.colluvium.triangles.size());
@@ -89,26 +73,26 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
 MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
   MeshStageResult r = buildMeshes(rock, preset);
   const AssetMeshes& meshes = r.meshes;
-  const auto export_start = std::chrono::steady_clock::now();
-  if (wants(preset, "glb")) {
-    auto clock = std::chrono::steady_clock::now();
+  const Stopwatch export_clock;
+  if (exportsFormat(preset, "glb")) {
+    Stopwatch clock;
     r.lods = simplifyLods(meshes, {preset.mesh.lods});
-    r.simplify_seconds += since(clock);
+    r.simplify_seconds += clock.lap();
   }
-  r.lod_files.push_back(wants(preset, "glb") ? "rock.glb" : wants(preset, "ply") ? "rock.ply" : "");
+  r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");
   for (std::size_t i = 0; i < r.lods.size(); ++i) r.lod_files.push_back("rock_lod" + std::to_string(i + 1) + ".glb");
 
   // The files are independent: write them concurrently, so one file's
   // formatting overlaps another's disk writes and fsync.
   const auto timed = [&](const char* what, auto&& write) {
     return [&, what, write] {
-      auto clock = std::chrono::steady_clock::now();
+      Stopwatch clock;
       write();
-      spdlog::debug("{}: {} in {:.3f} s", preset.name, what, since(clock));
+      spdlog::debug("{}: {} in {:.3f} s", preset.name, what, clock.lap());
     };
   };
   tbb::task_group exports;
-  if (wants(preset, "ply")) {
+  if (exportsFormat(preset, "ply")) {
     exports.run(timed("rock.ply", [&] { writePly(meshes.rock, asset_dir / "rock.ply"); }));
     if (!meshes.colluvium.positions.empty()) {
       exports.run(timed("colluvium.ply", [&] { writePly(meshes.colluvium, asset_dir / "colluvium.ply"); }));
@@ -117,14 +101,14 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
       std::filesystem::remove(asset_dir / "colluvium.ply", ignored);
     }
   }
-  if (wants(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
-  if (wants(preset, "glb")) {
+  if (exportsFormat(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
+  if (exportsFormat(preset, "glb")) {
     exports.run(timed("glb", [&] { writeGlb(meshes, asset_dir / "rock.glb", 0); }));
     for (std::size_t i = 0; i < r.lods.size(); ++i)
       exports.run(timed("lod", [&, i] { writeGlb(r.lods[i], asset_dir / r.lod_files[i + 1], int(i + 1)); }));
   }
   exports.wait();  // rethrows the first failure
-  r.export_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count();
+  r.export_seconds = export_clock.elapsed();
   return r;
 }
 

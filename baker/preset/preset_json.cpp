@@ -129,8 +129,9 @@ json presetToJson(const Preset& p) {
                  {"max_error", p.mesh.max_error},
                  {"lods", p.mesh.lods}};
   if (p.mesh.detail)
-    out["mesh"]["detail"] = {
-        {"amplitude", p.mesh.detail->amplitude}, {"period", p.mesh.detail->period}, {"octaves", p.mesh.detail->octaves}};
+    out["mesh"]["detail"] = {{"amplitude", p.mesh.detail->amplitude},
+                             {"period", p.mesh.detail->period},
+                             {"octaves", p.mesh.detail->octaves}};
   json layers = json::array();
   for (const auto& l : p.bake.layers) layers.push_back({{"durability", l.durability}, {"color", l.color}});
   out["bake"] = {{"palette", paletteName(p.bake.palette)}, {"layers", layers}};
@@ -142,16 +143,6 @@ json presetToJson(const Preset& p) {
                    {"height", p.render.height},          {"quality", p.render.quality},
                    {"antialias", p.render.antialias},    {"turntable", {{"frames", p.render.turntable_frames}}}};
   return out;
-}
-
-std::string presetHash(const json& resolved) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (unsigned char c : resolved.dump()) hash = (hash ^ c) * 0x100000001b3ull;
-  return fmt::format("{:016x}", hash);
-}
-
-std::string presetHash(const Preset& preset) {
-  return presetHash(presetToJson(preset));
 }
 
 }  // namespace rockbake

@@ -9,8 +9,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "util/hash.h"
+#include "core/atomic_file.h"
+#include "core/hash.h"
 
 namespace rockbake {
 namespace {
