@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "inputs/mesh_reader.h"
+#include "inputs/resolve_shape.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/mesh_defects.h"
@@ -61,7 +62,7 @@ Preset weatheredPreset() {
 const VoxelRock& weatheredRock() {
   static const VoxelRock rock = [] {
     const Preset p = weatheredPreset();
-    return weatherRock(buildInitialRock(p), p).rock;
+    return weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
   }();
   return rock;
 }
@@ -271,7 +272,7 @@ struct Faithful {
 Faithful faithfulness(const char* preset_file, int resolution) {
   Preset p = loadPreset(test::sourceDir() / "presets" / preset_file, {{}, std::nullopt, resolution});
   p.mesh.detail.reset();
-  const VoxelRock rock = weatherRock(buildInitialRock(p), p).rock;
+  const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
   const MeshStageResult r = buildMeshes(rock, p);
   const double h = rock.layout.h;
   const double voxels = double(rock.count(Material::Rock)) * h * h * h;
@@ -295,7 +296,7 @@ TEST(AssetFaithful, AOneVoxelNeckStaysConnected) {
   // Two blocks joined by a one-voxel column: smoothing alone would cut it.
   Preset p = test::cubePreset(2.0, 20, 0.2);
   p.grid.ground = true;
-  VoxelRock rock = buildInitialRock(p);
+  VoxelRock rock = buildInitialRock(resolveShape(p), p);
   const GridLayout& g = rock.layout;
   std::fill(rock.material.begin(), rock.material.end(), Material::Air);
   for (int z = 0; z < g.nz; ++z)
