@@ -13,6 +13,7 @@ struct MeshDefects {
   std::size_t fold_overs = 0;  // triangles facing against all three edge neighbours
   std::size_t zero_area = 0;   // triangles whose area is below 1e-6 of their longest edge squared
   std::size_t components = 0;  // connected pieces (through shared vertices)
+  std::size_t shells = 0;      // of those, the ones enclosing positive volume (not cavities)
   double volume = 0;           // signed, positive when outward
   bool clean() const { return open_edges == 0 && fold_overs == 0 && zero_area == 0; }
 };
