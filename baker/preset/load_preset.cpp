@@ -3,6 +3,7 @@
 // source position, so every error can say where it is.
 #include "preset/load_preset.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +19,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include "io/mesh_reader.h"
+#include "io/png_image.h"
+#include "preset/render_templates.h"
 #include "preset/yaml_text.h"
 #include "sim/voxel_rock.h"
 #include "util/did_you_mean.h"
@@ -60,6 +63,12 @@ struct Source {
   const std::filesystem::path& folder() const { return origins.front().folder; }
 };
 
+// The largest length (and coordinate) a preset may give, in world units. Beyond it products of lengths
+// overflow long before a grid could resolve them.
+constexpr double kMaxWorldLength = 1e6;
+// The most cycles a bake may run, whether given as `cycles` or as `time`.
+constexpr long long kMaxCycles = 1000000;
+
 std::string formatNumber(double v) {
   std::ostringstream out;
   out << v;
@@ -93,8 +102,10 @@ class Field {
     return "paths are relative to the folder of " + origin.file + ", the file that gives them";
   }
 
+  // A key the map lacks reads as nothing (null), never as yaml-cpp's invalid node.
   Field at(const std::string& key) const {
-    return Field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
+    return Field(node_.IsMap() && node_[key].IsDefined() ? node_[key] : YAML::Node(), join(key), *source_,
+                 markOrParent());
   }
   bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
   // The value of a key that must be given. A key written with no value is reported at the key (an
@@ -178,6 +189,15 @@ class Field {
     if (v <= 0) fail("must be greater than 0, found " + formatNumber(v));
     return v;
   }
+  // A length in world units: > 0 and at most kMaxWorldLength.
+  double length() const {
+    const double v = positive();
+    if (v > kMaxWorldLength)
+      fail("must be at most " + formatNumber(kMaxWorldLength) + " world units, found " + formatNumber(v));
+    return v;
+  }
+  // Where this value is: for errors found after loading (Preset::places).
+  SourceLocation where() const { return location(); }
   long long integer(long long lo, long long hi) const {
     if (!node_.IsScalar()) fail("expected a whole number, found " + describe(node_));
     long long v = 0;
@@ -213,13 +233,16 @@ class Field {
       fail("'" + v + "' is not one of: " + joinNames(options));
     return v;
   }
+  // Three lengths (sizes, radii, half extents).
   Vec3d positiveVec3() const {
     if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).positive(), item(1).positive(), item(2).positive()};
+    return {item(0).length(), item(1).length(), item(2).length()};
   }
+  // A position: each coordinate within ±kMaxWorldLength.
   Vec3d vec3() const {
     if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).number(), item(1).number(), item(2).number()};
+    return {item(0).numberIn(-kMaxWorldLength, kMaxWorldLength), item(1).numberIn(-kMaxWorldLength, kMaxWorldLength),
+            item(2).numberIn(-kMaxWorldLength, kMaxWorldLength)};
   }
 
  private:
@@ -340,7 +363,7 @@ BubbleSpec readBubble(const Field& f) {
   if (kind == "sphere") {
     k.expectMap({"radius"});
     bubble.kind = BubbleSpec::Kind::Sphere;
-    bubble.extents = {k.at("radius").positive(), 0, 0};
+    bubble.extents = {k.at("radius").length(), 0, 0};
   } else if (kind == "ellipsoid") {
     k.expectMap({"radii"});
     bubble.kind = BubbleSpec::Kind::Ellipsoid;
@@ -356,7 +379,8 @@ BubbleSpec readBubble(const Field& f) {
       const Field m = k.item(i);
       m.expectMap({"bubble", "weight"});
       if (!m.has("bubble")) m.fail("a collection member needs a bubble");
-      bubble.members.push_back({readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").positive() : 1.0});
+      bubble.members.push_back(
+          {readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").numberIn(0.0, 1e6, true) : 1.0});
     }
   }
   return bubble;
@@ -430,7 +454,7 @@ DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) 
       s.expectMap({"amplitude", "period", "octaves"});
       NoiseParams noise;
       if (s.has("amplitude")) noise.amplitude = s.at("amplitude").numberIn(0.0, 1e6);
-      if (s.has("period")) noise.period = s.at("period").positive();
+      if (s.has("period")) noise.period = s.at("period").length();
       if (s.has("octaves")) noise.octaves = int(s.at("octaves").integer(1, 8));
       graph.noise.push_back(noise);
     }
@@ -446,13 +470,13 @@ void readShape(const Field& f, Preset& p) {
     p.shape.kind = BoxShape{k.at("size").positiveVec3()};
   } else if (kind == "cylinder") {
     k.expectMap({"radius", "height"});
-    p.shape.kind = CylinderShape{k.at("radius").positive(), k.at("height").positive()};
+    p.shape.kind = CylinderShape{k.at("radius").length(), k.at("height").length()};
   } else if (kind == "sphere") {
     k.expectMap({"radius"});
-    p.shape.kind = SphereShape{k.at("radius").positive()};
+    p.shape.kind = SphereShape{k.at("radius").length()};
   } else if (kind == "inside_corner") {
     k.expectMap({"size", "wall"});
-    InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").positive()};
+    InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").length()};
     if (corner.wall >= std::min(corner.size[0], corner.size[1]))
       k.at("wall").fail("must be thinner than the corner's footprint (" + formatNumber(corner.size[0]) + " × " +
                         formatNumber(corner.size[1]) + ")");
@@ -465,10 +489,19 @@ void readShape(const Field& f, Preset& p) {
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(image.path))
       k.at("path").fail("no image file at " + image.path.string(), k.at("path").relativePathHint());
+    // Read it now, so that a file that is not a usable PNG stops the bake here, at its key.
+    try {
+      const GrayImage pixels = readPngGray(image.path);
+      if (pixels.width <= 0 || pixels.height <= 0) k.at("path").fail("the image " + image.path.string() + " is empty");
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const InputError*>(&e)) throw;
+      k.at("path").fail(e.what(), "give a readable black-and-white PNG");
+    }
+    p.places["shape.image.path"] = k.at("path").where();
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
                      : ImageMode::Extrude;
-    image.height = k.at("height").positive();
+    image.height = k.at("height").length();
     p.shape.kind = image;
   } else {
     k.expectMap({"path", "scale"});
@@ -478,7 +511,8 @@ void readShape(const Field& f, Preset& p) {
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(mesh.path))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
-    if (k.has("scale")) mesh.scale = k.at("scale").positive();
+    if (k.has("scale")) mesh.scale = k.at("scale").numberIn(0.0, kMaxWorldLength, true);
+    p.places["shape.mesh.path"] = k.at("path").where();
     // Read it now, so a broken blockout stops the bake before anything is written.
     try {
       const TriangleMesh triangles = readTriangleMesh(mesh.path);
@@ -495,6 +529,7 @@ void readShape(const Field& f, Preset& p) {
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
+  p.places["shape"] = f.where();
 }
 
 // Runs one part of the validation. Loading stops at the first problem; linting (source.problems set)
@@ -534,8 +569,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
 
   validatePart(source, [&] {
     p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
-    if (!isAssetName(p.name))
-      root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
+    if (const auto problem = assetNameProblem(p.name)) root.at("name").fail(*problem, "it names the output folder");
+    p.places["name"] = root.at("name").where();
   });
   validatePart(source, [&] {
     if (root.has("seed")) p.seed = root.at("seed").unsigned64();
@@ -579,22 +614,24 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (!root.has("bubbles")) return;
     const Field bands = root.at("bubbles");
     if (bands.size() == 0) bands.fail("needs at least one band");
-    for (std::size_t i = 0; i < bands.size(); ++i) {
-      const Field b = bands.item(i);
-      b.expectMap({"up_to", "bubble", "spheroidal", "cavernous"});
-      BubbleBand band;
-      if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
-      band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
-      if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
-        b.at("up_to").fail("bands go bottom to top: up_to must increase");
-      if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
-      band.bubble = readBubble(b.at("bubble"));
-      checkBubbleSize(band.bubble, b.at("bubble"), h);
-      if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
-      if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
-      p.bubbles.push_back(band);
-    }
-    if (p.bubbles.back().up_to != 1.0)
+    // Band by band, so that linting lists the problems of every band.
+    for (std::size_t i = 0; i < bands.size(); ++i)
+      validatePart(source, [&] {
+        const Field b = bands.item(i);
+        b.expectMap({"up_to", "bubble", "spheroidal", "cavernous"});
+        BubbleBand band;
+        if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
+        band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
+        if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
+          b.at("up_to").fail("bands go bottom to top: up_to must increase");
+        if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
+        band.bubble = readBubble(b.at("bubble"));
+        checkBubbleSize(band.bubble, b.at("bubble"), h);
+        if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
+        if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
+        p.bubbles.push_back(band);
+      });
+    if (p.bubbles.size() == bands.size() && p.bubbles.back().up_to != 1.0)
       bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
   });
   if (!root.has("bubbles")) {
@@ -656,8 +693,18 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (root.has("time") == root.has("cycles"))
       root.fail(root.has("time") ? "give either 'time' or 'cycles', not both" : "missing 'time' (or 'cycles')",
                 "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution");
-    if (root.has("time")) p.stop.time = root.at("time").positive();
-    if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, 1000000));
+    if (root.has("time")) {
+      // `time` runs ceil(time / h) cycles: the same limit as `cycles`.
+      p.stop.time = root.at("time").positive();
+      const double cycles = std::ceil(*p.stop.time / h - 1e-9);
+      if (cycles > double(kMaxCycles))
+        root.at("time").fail("time " + formatNumber(*p.stop.time) + " is " +
+                                 (cycles < 1e15 ? std::to_string((long long)cycles) : formatNumber(cycles)) +
+                                 " cycles at this resolution (a cycle is " + formatNumber(h) +
+                                 " units of time); at most " + std::to_string(kMaxCycles) + " cycles are allowed",
+                             "lower time (at most " + formatNumber(double(kMaxCycles) * h) + " here)");
+    }
+    if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, kMaxCycles));
   });
   validatePart(source, [&] {
     if (!root.has("until")) return;
@@ -721,7 +768,14 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (!root.has("render")) return;
     const Field r = root.at("render");
     r.expectMap({"template", "width", "height", "quality", "antialias", "turntable"});
-    if (r.has("template")) p.render.template_name = r.at("template").string();
+    if (r.has("template")) {
+      p.render.template_name = r.at("template").string();
+      if (const auto problem = renderTemplateProblem(p.render.template_name, renderTemplatesDir()))
+        r.at("template")
+            .fail(*problem, "a template is named by its file in " + renderTemplatesDir().string() +
+                                " without .pov, never by a path");
+      p.places["render.template"] = r.at("template").where();
+    }
     if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
     if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
     if (r.has("quality")) p.render.quality = int(r.at("quality").integer(0, 11));
@@ -737,12 +791,16 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     const GridLayout layout = computeGridLayout(p);
     const std::uint64_t needed = estimateSimulationBytes(layout);
-    const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+    std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+    // A limit on this process (ulimit -v, a batch system's) counts as the machine's memory.
+    struct rlimit limit {};
+    if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      physical = std::min<std::uint64_t>(physical, limit.rlim_cur);
     if (needed > physical / 10 * 6) {
       const Field where =
           root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
       where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
-                     " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine has " +
+                     " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine (or process) has " +
                      std::to_string(physical >> 20) + " MiB",
                  "lower grid.resolution (or --resolution)");
     }
@@ -758,29 +816,12 @@ SourceLocation locationOf(const std::string& file, const YAML::Mark& mark) {
 }
 
 std::optional<std::string> readText(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return readYamlFile(file.string(), "a preset");
 }
 
 // The one YAML document of a preset file (`file` names it in messages).
 YAML::Node readDocument(const std::string& yaml_text, const std::string& file) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(locationOf(file, e.mark), "", "malformed YAML: " + e.msg,
-                     "check the indentation and brackets there");
-  }
-  // A second document would be ignored without a word.
-  if (documents.size() > 1)
-    throw InputError(locationOf(file, documents[1].Mark()), "",
-                     "a preset holds one YAML document; a second one starts here",
-                     "remove the '---' and what follows, or make it a preset file of its own");
-  return documents.empty() ? YAML::Node() : documents.front();
+  return loadYamlDocument(yaml_text, file, "a preset");
 }
 
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {

@@ -6,10 +6,13 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "util/error.h"
 
 namespace rockbake {
 
@@ -178,6 +181,16 @@ struct Preset {
   BakeParams bake;
   std::vector<std::string> exports{"ply", "obj", "glb", "vdb"};
   RenderParams render;
+  // Where the keys a later stage may still refuse (name, shape, shape.image.path, shape.mesh.path,
+  // render.template) were given, so that those errors name file:line:col as well. Not part of the
+  // preset's value: never hashed or written.
+  std::map<std::string, SourceLocation> places;
+
+  // places[key_path], or the preset's file when the key has no recorded place.
+  SourceLocation placeOf(const std::string& key_path) const {
+    const auto it = places.find(key_path);
+    return it != places.end() ? it->second : SourceLocation{file.string(), 0, 0};
+  }
 };
 
 }  // namespace rockbake

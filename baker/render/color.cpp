@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "preset/render_templates.h"
 
 #ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
 #define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
@@ -89,10 +90,11 @@ std::string encodePng(int width, int height, const std::vector<unsigned char>& r
 }  // namespace
 
 std::filesystem::path defaultRenderTemplatesDir() {
-  return ROCKBAKE_RENDER_TEMPLATES_DIR;
+  return renderTemplatesDir();
 }
+// The shipped config, also when the templates come from a folder of the user's own.
 std::filesystem::path defaultOcioConfig() {
-  return defaultRenderTemplatesDir() / "ocio" / "config.ocio";
+  return std::filesystem::path(ROCKBAKE_RENDER_TEMPLATES_DIR) / "ocio" / "config.ocio";
 }
 
 std::array<float, 3> srgbToSceneLinear(const std::array<float, 3>& srgb, const std::filesystem::path& cfg) {

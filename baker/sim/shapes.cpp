@@ -59,11 +59,12 @@ InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, co
       try {
         image = readPngGray(img.path);
       } catch (const std::exception& e) {
-        throw InputError({preset.file.string()}, "shape.image.path", e.what(),
+        throw InputError(preset.placeOf("shape.image.path"), "shape.image.path", e.what(),
                          "give a readable black-and-white PNG; paths are relative to the preset");
       }
       if (image.width <= 0 || image.height <= 0)
-        throw InputError({preset.file.string()}, "shape.image.path", "the image " + img.path.string() + " is empty");
+        throw InputError(preset.placeOf("shape.image.path"), "shape.image.path",
+                         "the image " + img.path.string() + " is empty");
       const auto white = [image](int px, int py) {
         return px >= 0 && py >= 0 && px < image.width && py < image.height && image.at(px, py) >= 128;
       };
@@ -99,7 +100,7 @@ TriangleMesh placeMesh(const MeshShape& shape, const Vec3d& center, const Preset
   try {
     mesh = readTriangleMesh(shape.path);
   } catch (const std::exception& e) {
-    throw InputError({preset.file.string()}, "shape.mesh.path", e.what());
+    throw InputError(preset.placeOf("shape.mesh.path"), "shape.mesh.path", e.what());
   }
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (auto& p : mesh.positions)
@@ -151,7 +152,7 @@ VoxelRock buildInitialRock(const Preset& preset) {
   if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end())
     spdlog::warn("{}: the shape reaches beyond grid.size and was clipped to it", preset.file.string());
   if (rock.count(Material::Rock) == 0)
-    throw InputError({preset.file.string()}, "shape", "the shape covers no voxel of the grid",
+    throw InputError(preset.placeOf("shape"), "shape", "the shape covers no voxel of the grid",
                      "check its size and center against grid.size, or raise grid.resolution");
 
   assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0));
