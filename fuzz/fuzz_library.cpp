@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
+#include "core/error.h"
 #include "fuzz_support.h"
 #include "pipeline/library.h"
-#include "util/error.h"
 
 using namespace rockbake;
 

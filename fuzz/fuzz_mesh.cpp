@@ -5,8 +5,9 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/mesh_checks.h"
 #include "fuzz_support.h"
-#include "io/mesh_reader.h"
+#include "inputs/mesh_reader.h"
 
 using namespace rockbake;
 

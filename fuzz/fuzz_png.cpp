@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "core/png_image.h"
 #include "fuzz_support.h"
-#include "io/png_image.h"
 
 using namespace rockbake;
 

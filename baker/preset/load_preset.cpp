@@ -3,14 +3,12 @@
 // source position, so every error can say where it is.
 #include "preset/load_preset.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -18,13 +16,10 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "io/mesh_reader.h"
-#include "io/png_image.h"
+#include "core/did_you_mean.h"
+#include "core/error.h"
 #include "preset/render_templates.h"
 #include "preset/yaml_text.h"
-#include "sim/voxel_rock.h"
-#include "util/did_you_mean.h"
-#include "util/error.h"
 
 namespace rockbake {
 namespace {
@@ -58,6 +53,8 @@ struct Source {
   std::vector<std::pair<std::string, std::string>> overrides;
   // Linting: problems are recorded here and validation goes on; null: the first one throws.
   std::vector<InputError>* problems = nullptr;
+  // Where every key read was written (Preset::locations), when set.
+  std::map<std::string, SourceLocation>* locations = nullptr;
 
   const std::string& file() const { return origins.front().file; }
   const std::filesystem::path& folder() const { return origins.front().folder; }
@@ -104,8 +101,10 @@ class Field {
 
   // A key the map lacks reads as nothing (null), never as yaml-cpp's invalid node.
   Field at(const std::string& key) const {
-    return Field(node_.IsMap() && node_[key].IsDefined() ? node_[key] : YAML::Node(), join(key), *source_,
-                 markOrParent());
+    Field field(node_.IsMap() && node_[key].IsDefined() ? node_[key] : YAML::Node(), join(key), *source_,
+                markOrParent());
+    if (source_->locations && field.defined()) source_->locations->emplace(field.path(), field.location());
+    return field;
   }
   bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
   // The value of a key that must be given. A key written with no value is reported at the key (an
@@ -196,8 +195,6 @@ class Field {
       fail("must be at most " + formatNumber(kMaxWorldLength) + " world units, found " + formatNumber(v));
     return v;
   }
-  // Where this value is: for errors found after loading (Preset::places).
-  SourceLocation where() const { return location(); }
   long long integer(long long lo, long long hi) const {
     if (!node_.IsScalar()) fail("expected a whole number, found " + describe(node_));
     long long v = 0;
@@ -489,15 +486,6 @@ void readShape(const Field& f, Preset& p) {
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(image.path))
       k.at("path").fail("no image file at " + image.path.string(), k.at("path").relativePathHint());
-    // Read it now, so that a file that is not a usable PNG stops the bake here, at its key.
-    try {
-      const GrayImage pixels = readPngGray(image.path);
-      if (pixels.width <= 0 || pixels.height <= 0) k.at("path").fail("the image " + image.path.string() + " is empty");
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const InputError*>(&e)) throw;
-      k.at("path").fail(e.what(), "give a readable black-and-white PNG");
-    }
-    p.places["shape.image.path"] = k.at("path").where();
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
                      : ImageMode::Extrude;
@@ -512,24 +500,9 @@ void readShape(const Field& f, Preset& p) {
     if (!std::filesystem::is_regular_file(mesh.path))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
     if (k.has("scale")) mesh.scale = k.at("scale").numberIn(0.0, kMaxWorldLength, true);
-    p.places["shape.mesh.path"] = k.at("path").where();
-    // Read it now, so a broken blockout stops the bake before anything is written.
-    try {
-      const TriangleMesh triangles = readTriangleMesh(mesh.path);
-      const std::vector<OpenEdge> open = findOpenEdges(triangles);
-      if (!open.empty())
-        k.at("path").fail(fmt::format("{} is not closed: {} edges are not shared by exactly two consistently "
-                                      "oriented faces (e.g. vertices {} and {}, used {} times)",
-                                      mesh.path.string(), open.size(), open[0].a + 1, open[0].b + 1, open[0].uses),
-                          "close the holes and make the normals consistent in the modelling package");
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const InputError*>(&e)) throw;
-      k.at("path").fail(e.what());
-    }
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
-  p.places["shape"] = f.where();
 }
 
 // Runs one part of the validation. Loading stops at the first problem; linting (source.problems set)
@@ -570,7 +543,6 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
     if (const auto problem = assetNameProblem(p.name)) root.at("name").fail(*problem, "it names the output folder");
-    p.places["name"] = root.at("name").where();
   });
   validatePart(source, [&] {
     if (root.has("seed")) p.seed = root.at("seed").unsigned64();
@@ -581,7 +553,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     const Field g = root.at("grid");
     g.expectMap({"size", "resolution", "ground"});
     if (g.has("size")) p.grid.size = g.at("size").positiveVec3();
-    if (g.has("resolution")) p.grid.resolution = int(g.at("resolution").integer(8, 2048));
+    if (g.has("resolution"))
+      p.grid.resolution = int(g.at("resolution").integer(GridParams::kMinResolution, GridParams::kMaxResolution));
     if (g.has("ground")) p.grid.ground = g.at("ground").boolean();
   });
   const double h = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / p.grid.resolution;
@@ -774,7 +747,6 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
         r.at("template")
             .fail(*problem, "a template is named by its file in " + renderTemplatesDir().string() +
                                 " without .pov, never by a path");
-      p.places["render.template"] = r.at("template").where();
     }
     if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
     if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
@@ -787,24 +759,6 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     }
   });
 
-  // Refuse a grid this machine cannot hold before anything is allocated.
-  validatePart(source, [&] {
-    const GridLayout layout = computeGridLayout(p);
-    const std::uint64_t needed = estimateSimulationBytes(layout);
-    std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
-    // A limit on this process (ulimit -v, a batch system's) counts as the machine's memory.
-    struct rlimit limit {};
-    if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-      physical = std::min<std::uint64_t>(physical, limit.rlim_cur);
-    if (needed > physical / 10 * 6) {
-      const Field where =
-          root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
-      where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
-                     " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine (or process) has " +
-                     std::to_string(physical >> 20) + " MiB",
-                 "lower grid.resolution (or --resolution)");
-    }
-  });
   return p;
 }
 
@@ -998,8 +952,11 @@ std::string readPresetFile(const std::filesystem::path& file) {
 
 Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
   PresetTree tree = readPresetTree(yaml_text, file, overrides);
+  std::map<std::string, SourceLocation> locations;
+  tree.source.locations = &locations;
   Preset preset = validate(tree.root, tree.source, std::filesystem::absolute(file));
   preset.sources = std::move(tree.files);
+  preset.locations = std::move(locations);
   return preset;
 }
 

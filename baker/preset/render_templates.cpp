@@ -4,7 +4,7 @@
 #include <cstdlib>
 
 #include "preset/yaml_text.h"
-#include "util/did_you_mean.h"
+#include "core/did_you_mean.h"
 
 #ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
 #define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"

@@ -9,7 +9,7 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
-#include "util/error.h"
+#include "core/error.h"
 
 namespace rockbake {
 
