@@ -58,7 +58,14 @@ class StagingFolder {
 
  private:
   static std::filesystem::path hidden(const std::filesystem::path& dir, const char* what) {
-    return dir.parent_path() / ("." + dir.filename().string() + "." + what + "-" + std::to_string(::getpid()));
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) about "." + std::string.
+    std::string name = ".";
+    name += dir.filename().string();
+    name += '.';
+    name += what;
+    name += '-';
+    name += std::to_string(::getpid());
+    return dir.parent_path() / name;
   }
 
   std::filesystem::path final_, staging_;
