@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "fuzz_support.h"
-#include "pipeline/library.h"
+#include "preset/library.h"
 
 using namespace rockbake;
 
