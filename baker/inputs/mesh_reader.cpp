@@ -79,8 +79,8 @@ TriangleMesh readObj(const std::filesystem::path& file, const std::string& text)
         // Negative indices count back from the last vertex.
         const long resolved = index < 0 ? long(mesh.positions.size()) + index : index - 1;
         if (resolved < 0 || std::size_t(resolved) >= mesh.positions.size())
-          fail(file, fmt::format("line {}: vertex index {} is out of range ({} vertices so far)", number, index,
-                                 mesh.positions.size()));
+          fail(file,
+               fmt::format("line {}: vertex index {} past the {} vertices", number, index, mesh.positions.size()));
         polygon.push_back(std::uint32_t(resolved));
       }
       addPolygon(mesh, polygon, file, number);

@@ -1,6 +1,10 @@
 #include "pipeline/bake_asset.h"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
 
 #include <chrono>
 #include <system_error>
@@ -31,6 +35,7 @@ class StagingFolder {
       : final_(asset_dir),
         staging_(hidden(asset_dir, "baking")),
         created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())) {
+    removeStale(asset_dir);
     std::filesystem::remove_all(staging_);
     std::filesystem::create_directories(staging_);
   }
@@ -57,6 +62,23 @@ class StagingFolder {
   }
 
  private:
+  // What a killed bake of this asset left (.<name>.baking-<pid>, .<name>.replaced-<pid> of a process that is
+  // gone) is removed; a bake of it still running elsewhere is left alone.
+  static void removeStale(const std::filesystem::path& asset_dir) {
+    std::error_code ec;
+    const std::filesystem::path parent = asset_dir.parent_path().empty() ? "." : asset_dir.parent_path();
+    const std::string prefix = "." + asset_dir.filename().string() + ".";
+    for (const auto& entry : std::filesystem::directory_iterator(parent, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) != 0) continue;
+      const std::size_t dash = name.rfind('-');
+      const std::string kind = name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size());
+      if (dash == std::string::npos || (kind != "baking" && kind != "replaced")) continue;
+      const long pid = std::strtol(name.c_str() + dash + 1, nullptr, 10);
+      if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(entry.path(), ec);
+    }
+  }
+
   static std::filesystem::path hidden(const std::filesystem::path& dir, const char* what) {
     // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) about "." + std::string.
     std::string name = ".";
