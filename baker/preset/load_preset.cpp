@@ -376,8 +376,7 @@ BubbleSpec readBubble(const Field& f) {
       const Field m = k.item(i);
       m.expectMap({"bubble", "weight"});
       if (!m.has("bubble")) m.fail("a collection member needs a bubble");
-      bubble.members.push_back(
-          {readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").numberIn(0.0, 1e6, true) : 1.0});
+      bubble.members.push_back({readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").positive() : 1.0});
     }
   }
   return bubble;

@@ -65,15 +65,25 @@ namespace {
 class DocumentStarts : public YAML::EventHandler {
  public:
   std::vector<YAML::Mark> starts;
+  std::vector<YAML::Mark> first_nodes;  // where each document's first value is
   void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { node(mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { node(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override { node(mark); }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(mark);
+  }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(mark);
+  }
   void OnMapEnd() override {}
+
+ private:
+  void node(const YAML::Mark& mark) {
+    if (first_nodes.size() < starts.size()) first_nodes.push_back(mark);
+  }
 };
 
 }  // namespace
@@ -108,7 +118,8 @@ YAML::Node loadYamlDocument(const std::string& text, const std::string& file, co
       if (second.pos == documents.starts[0].pos)
         throw InputError(at(second), "", "malformed YAML: a value cannot start with what is here",
                          "check the indentation and brackets there");
-      throw InputError(at(second), "", what + " holds one YAML document; a second one starts here",
+      const YAML::Mark& second_value = documents.first_nodes.size() > 1 ? documents.first_nodes[1] : second;
+      throw InputError(at(second_value), "", what + " holds one YAML document; a second one starts here",
                        "remove the '---' and what follows");
     }
     return YAML::Load(text);
