@@ -19,8 +19,8 @@ VoxelRock randomRock(int nx, int ny, int nz, bool ground, double fill, std::uint
     const double u = unitInterval(counterHash(seed, purposeId("test-fill"), 0, i));
     rock.material[i] = u < fill * 0.8 ? Material::Rock : (u < fill ? Material::Colluvium : Material::Air);
   }
-  rock.integrity.assign(rock.material.size(), 1.f);
-  rock.durability.assign(rock.material.size(), 1.f);
+  rock.integrity = RowSpans(rock.layout, 1.f);
+  rock.durability = RowSpans(rock.layout, 1.f);
   return rock;
 }
 
@@ -156,6 +156,26 @@ TEST(AirField, AnUnavailablePathCannotBeForced) {
   else
     EXPECT_THROW(setAlphaPath(AlphaPath::Avx512), std::invalid_argument);
   setAlphaPath(before);
+}
+
+TEST(RowSpans, ReadAndWriteLikeADenseArray) {
+  GridLayout g;
+  g.nx = 17, g.ny = 5, g.nz = 4;
+  for (float fill : {0.f, 1.f}) {
+    RowSpans spans(g, fill);
+    std::vector<float> dense(g.cellCount(), fill);
+    for (std::uint64_t i = 0; i < 3000; ++i) {
+      const std::size_t cell = std::size_t(counterHash(5, purposeId("test-spans"), i, 0) % g.cellCount());
+      // Half the writes put back the fill value, which must read back too.
+      const float value = counterHash(5, purposeId("test-spans"), i, 1) % 2 ? fill : float(i % 7) * 0.5f;
+      spans.set(cell, value);
+      dense[cell] = value;
+      ASSERT_EQ(spans[cell], value);
+    }
+    EXPECT_TRUE(spans.toDense() == dense);
+    for (std::size_t cell = 0; cell < g.cellCount(); ++cell) ASSERT_EQ(spans[cell], dense[cell]);
+    EXPECT_LE(spans.storedCells(), g.cellCount());
+  }
 }
 
 TEST(AirField, CountsStayExactAfterCellsChange) {

@@ -247,8 +247,7 @@ VoxelRock randomRock(int nx, int ny, int nz, unsigned seed) {
   g.h = 0.125;
   g.origin = {-1.25, -0.75, 0.0};
   rock.material.assign(g.cellCount(), Material::Air);
-  rock.integrity.assign(g.cellCount(), 1.0f);
-  rock.durability.assign(g.cellCount(), 0.0f);
+  resetRockValues(rock);
   std::mt19937 random(seed);
   std::uniform_real_distribution<float> durability(0.1f, 3.0f);
   for (int z = 0; z < nz; ++z) {
@@ -259,7 +258,7 @@ VoxelRock randomRock(int nx, int ny, int nz, unsigned seed) {
         const unsigned roll = random() % 100;
         if (solid || roll < 45) {
           rock.material[cell] = Material::Rock;
-          rock.durability[cell] = durability(random);
+          rock.durability.set(cell, durability(random));
         } else if (roll < 60) {
           rock.material[cell] = Material::Colluvium;
         }
@@ -281,7 +280,7 @@ VoxelRock sphereRock(int n) {
         const bool inside = std::sqrt(dx * dx + dy * dy + dz * dz) < 0.4 * n + (random() % 3);
         const std::size_t cell = g.index(x, y, z);
         rock.material[cell] = inside ? Material::Rock : (z < 2 ? Material::Colluvium : Material::Air);
-        rock.durability[cell] = inside ? 0.5f + float(z) / float(n) : 0.0f;
+        rock.durability.set(cell, inside ? 0.5f + float(z) / float(n) : 0.0f);
       }
     }
   }
@@ -307,8 +306,8 @@ TEST(RockVdb, RoundTripsMaterialsAndDurability) {
 
   const VoxelRock back = readRockVdb(file, rock.layout);
   EXPECT_TRUE(back.material == rock.material);
-  EXPECT_TRUE(back.durability == rock.durability);
-  EXPECT_TRUE(back.integrity == std::vector<float>(rock.layout.cellCount(), 1.0f));
+  EXPECT_TRUE(back.durability.toDense() == rock.durability.toDense());
+  EXPECT_TRUE(back.integrity.toDense() == std::vector<float>(rock.layout.cellCount(), 1.0f));
 }
 
 TEST(RockVdb, LevelSetIsNegativeInsideAndPositiveOutside) {
@@ -382,7 +381,7 @@ TEST(RockVdb, SameRockGivesIdenticalBytesAndAHashedUuid) {
   EXPECT_TRUE(std::regex_match(a.substr(21, 36), uuid)) << a.substr(21, 36);
 
   VoxelRock other = rock;  // one voxel different: a different file and UUID
-  other.durability[other.layout.index(8, 8, 0)] += 0.5f;
+  other.durability.set(other.layout.index(8, 8, 0), other.durability[other.layout.index(8, 8, 0)] + 0.5f);
   writeRockVdb(other, dir.path() / "c.vdb");
   EXPECT_NE(readBytes(dir.path() / "c.vdb").substr(21, 36), a.substr(21, 36));
 }

@@ -130,7 +130,8 @@ std::string layoutText(const GridLayout& layout) {
 
 void checkArrays(const VoxelRock& rock, const fs::path& file) {
   const std::size_t cells = rock.layout.cellCount();
-  if (rock.material.size() != cells || rock.durability.size() != cells) {
+  if (rock.material.size() != cells || rock.durability.nx != rock.layout.nx ||
+      rock.durability.first.size() != std::size_t(rock.layout.ny) * std::size_t(rock.layout.nz)) {
     fail(file, "write", "the rock's arrays do not match its " + layoutText(rock.layout) + " layout");
   }
 }
@@ -218,8 +219,7 @@ VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
   VoxelRock rock;
   rock.layout = layout;
   rock.material.assign(layout.cellCount(), Material::Air);
-  rock.integrity.assign(layout.cellCount(), 1.0f);
-  rock.durability.assign(layout.cellCount(), 0.0f);
+  resetRockValues(rock);
 
   // Visits every active voxel, tiles expanded, refusing any outside the layout.
   auto forEachActive = [&](const auto& grid, auto&& visit) {
@@ -256,7 +256,8 @@ VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
       if (rock.material[cell] == Material::Rock) fail(file, "read", "a voxel is both rock and colluvium");
       rock.material[cell] = Material::Colluvium;
     });
-    forEachActive(*durabilityGrid, [&](std::size_t cell, float value) { rock.durability[cell] = value; });
+    resetRockValues(rock);  // spans sized to the rock read above
+    forEachActive(*durabilityGrid, [&](std::size_t cell, float value) { rock.durability.set(cell, value); });
   } catch (const openvdb::Exception& e) {
     fail(file, "read", e.what());
   }

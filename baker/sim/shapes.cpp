@@ -132,9 +132,6 @@ VoxelRock buildInitialRock(const Preset& preset) {
     inside = insideTest(preset.shape.kind, center[0], center[1], center[2], preset);
   }
 
-  rock.integrity.assign(g.cellCount(), 1.f);
-  rock.durability.assign(g.cellCount(), 0.f);
-
   std::vector<char> clipped(std::size_t(g.nz), 0);
   tbb::parallel_for(0, g.nz, [&](int z) {
     for (int y = 0; y < g.ny; ++y)
@@ -154,6 +151,7 @@ VoxelRock buildInitialRock(const Preset& preset) {
     throw InputError({preset.file.string()}, "shape", "the shape covers no voxel of the grid",
                      "check its size and center against grid.size, or raise grid.resolution");
 
+  resetRockValues(rock);
   assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0));
   return rock;
 }

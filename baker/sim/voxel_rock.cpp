@@ -39,13 +39,73 @@ GridLayout computeGridLayout(const Preset& preset) {
 }
 
 std::uint64_t estimateSimulationBytes(const GridLayout& layout) {
-  // material (1) + integrity (4) + durability (4) + an exposure flag (1)
-  // + the air bit field with its apron + work lists for about a third of the
-  // cells being exposed at once (index + integrity + flag).
   const std::uint64_t cells = layout.cellCount();
+  const std::uint64_t rows = std::uint64_t(layout.ny) * std::uint64_t(layout.nz);
+  // Rock lies inside the domain: the grid less its margin on four sides and the top.
+  const auto inner = [&](int n, int sides) { return std::uint64_t(std::max(0, n - sides * layout.margin)); };
+  const std::uint64_t domain = inner(layout.nx, 2) * inner(layout.ny, 2) * inner(layout.nz, 1);
   const std::uint64_t apron = std::uint64_t(layout.margin);
   const std::uint64_t field_bits = (layout.nx + 2 * apron + 128) * (layout.ny + 2 * apron) * (layout.nz + 2 * apron);
-  return cells * 10 + field_bits / 8 + cells / 3 * 9;
+  // material (1 byte a cell); integrity and durability (4 + 4 bytes a rock
+  // cell, at most the domain, plus a span header per row for each); the air
+  // field; five bit planes (exposed, colluvium, and rockfall's visited,
+  // removed and clustered marks); work lists for the exposed voxels, at most
+  // about a tenth of the domain at once (cell, flag and counts: 16 bytes).
+  return cells + domain * 8 + rows * 2 * 32 + field_bits / 8 + cells * 5 / 8 + domain / 10 * 16;
+}
+
+void RowSpans::cover(std::size_t row, int x_lo, int x_hi) {
+  std::vector<float>& v = values[row];
+  std::int32_t& x0 = first[row];
+  if (v.empty()) {
+    x0 = x_lo;
+    v.assign(std::size_t(x_hi - x_lo + 1), fill);
+    v.shrink_to_fit();
+    return;
+  }
+  const int lo = std::min(x_lo, int(x0)), hi = std::max(x_hi, int(x0) + int(v.size()) - 1);
+  if (lo == x0 && hi == x0 + int(v.size()) - 1) return;
+  std::vector<float> grown(std::size_t(hi - lo + 1), fill);
+  std::copy(v.begin(), v.end(), grown.begin() + (x0 - lo));
+  v = std::move(grown);
+  x0 = lo;
+}
+
+void RowSpans::set(std::size_t row, int x, float value) {
+  if (!covers(row, x)) {
+    if (value == fill) return;
+    cover(row, x, x);
+  }
+  slot(row, x) = value;
+}
+
+std::vector<float> RowSpans::toDense() const {
+  std::vector<float> dense(std::size_t(nx) * first.size(), fill);
+  for (std::size_t row = 0; row < first.size(); ++row)
+    std::copy(values[row].begin(), values[row].end(),
+              dense.begin() + std::ptrdiff_t(row * std::size_t(nx) + first[row]));
+  return dense;
+}
+
+std::size_t RowSpans::storedCells() const {
+  std::size_t n = 0;
+  for (const auto& v : values) n += v.size();
+  return n;
+}
+
+void resetRockValues(VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  rock.integrity = RowSpans(g, 1.f);
+  rock.durability = RowSpans(g, 0.f);
+  for (std::size_t row = 0; row < std::size_t(g.ny) * std::size_t(g.nz); ++row) {
+    const Material* m = rock.material.data() + row * std::size_t(g.nx);
+    int lo = g.nx, hi = -1;
+    for (int x = 0; x < g.nx; ++x)
+      if (m[x] == Material::Rock) lo = std::min(lo, x), hi = x;
+    if (hi < 0) continue;
+    rock.integrity.cover(row, lo, hi);
+    rock.durability.cover(row, lo, hi);
+  }
 }
 
 std::size_t VoxelRock::count(Material m) const {
