@@ -3,30 +3,17 @@
 
 #include <random>
 
+#include "core/hash.h"
 #include "sim/bubble.h"
 #include "sim/curvature.h"
-#include "util/hash.h"
+#include "test_support.h"
 
 namespace rockbake {
 namespace {
 
-VoxelRock randomRock(int nx, int ny, int nz, bool ground, double fill, std::uint64_t seed) {
-  VoxelRock rock;
-  rock.layout.nx = nx, rock.layout.ny = ny, rock.layout.nz = nz;
-  rock.layout.ground = ground;
-  rock.material.resize(rock.layout.cellCount());
-  for (std::size_t i = 0; i < rock.material.size(); ++i) {
-    const double u = unitInterval(counterHash(seed, purposeId("test-fill"), 0, i));
-    rock.material[i] = u < fill * 0.8 ? Material::Rock : (u < fill ? Material::Colluvium : Material::Air);
-  }
-  rock.integrity = RowSpans(rock.layout, 1.f);
-  rock.durability = RowSpans(rock.layout, 1.f);
-  return rock;
-}
-
 // A solid block filling [x0, x1) × [y0, y1) × [z0, z1) of an nx × ny × nz grid.
 VoxelRock blockRock(int n, int lo, int hi) {
-  VoxelRock rock = randomRock(n, n, n, false, 0.0, 0);
+  VoxelRock rock = test::randomRock(n, n, n, 0, 0.0, false);
   for (int z = lo; z < hi; ++z)
     for (int y = lo; y < hi; ++y)
       for (int x = lo; x < hi; ++x) rock.material[rock.layout.index(x, y, z)] = Material::Rock;
@@ -81,7 +68,7 @@ TEST(Bubble, CollectionWeightsAreNormalisedAndNestedCollectionsFlatten) {
 TEST(AirField, CountsEqualTheNaiveLoopForEveryBubbleKind) {
   for (bool ground : {true, false}) {
     for (double fill : {0.3, 0.7}) {
-      const VoxelRock rock = randomRock(23, 17, 19, ground, fill, ground ? 11 : 12);
+      const VoxelRock rock = test::randomRock(23, 17, 19, ground ? 11 : 12, fill, ground);
       for (const auto& [name, bubble] : allBubbleKinds()) {
         const AirField field(rock, std::max(1, bubble.reach));
         const auto bound = field.bind(bubble);
@@ -105,7 +92,7 @@ void expectRunsEqualTheNaiveLoop(AlphaPath path) {
   bubbles.push_back({"long box (rows of 111)", makeBoxBubble({55.0, 1.0, 1.0})});
   bubbles.push_back({"sphere r19", makeSphereBubble(19.0)});
   for (bool ground : {true, false}) {
-    const VoxelRock rock = randomRock(75, 9, 8, ground, 0.5, ground ? 21 : 22);
+    const VoxelRock rock = test::randomRock(75, 9, 8, ground ? 21 : 22, 0.5, ground);
     const GridLayout& g = rock.layout;
     for (const auto& [name, bubble] : bubbles) {
       const AirField field(rock, std::max(1, bubble.reach));
@@ -140,7 +127,7 @@ TEST(AirField, Avx512RunsEqualTheNaiveLoop) {
 }
 
 TEST(AirField, LongRowsAreCutIntoPiecesOfOneLoad) {
-  const VoxelRock rock = randomRock(130, 5, 5, true, 0.5, 3);
+  const VoxelRock rock = test::randomRock(130, 5, 5, 3, 0.5, true);
   const AirField field(rock, 60);
   // A 121-cell row (box half extent 60): three pieces of at most 50 cells.
   EXPECT_EQ(field.bind(makeBoxBubble({60.0, 0.0, 0.0})).pieces, 3u);
@@ -179,7 +166,7 @@ TEST(RowSpans, ReadAndWriteLikeADenseArray) {
 }
 
 TEST(AirField, CountsStayExactAfterCellsChange) {
-  VoxelRock rock = randomRock(30, 12, 14, true, 0.5, 5);
+  VoxelRock rock = test::randomRock(30, 12, 14, 5, 0.5, true);
   const Bubble bubble = makeSphereBubble(4.5);
   AirField field(rock, bubble.reach);
   const auto bound = field.bind(bubble);

@@ -18,8 +18,8 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 

@@ -1,0 +1,43 @@
+#include "sim/grid_layout.h"
+
+#include "sim/bubble.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rockbake {
+
+GridLayout computeGridLayout(const SimParams& preset) {
+  GridLayout g;
+  const Vec3d& size = preset.grid.size;
+  g.h = std::max({size[0], size[1], size[2]}) / double(preset.grid.resolution);
+  int reach = 0;
+  for (const auto& band : preset.bubbles) reach = std::max(reach, bubbleReach(band.bubble, g.h));
+  g.margin = reach + 1;
+  const auto cells = [&](double extent) { return std::max(1, int(std::lround(extent / g.h))); };
+  g.nx = cells(size[0]) + 2 * g.margin;
+  g.ny = cells(size[1]) + 2 * g.margin;
+  g.nz = cells(size[2]) + g.margin;
+  g.origin = {-g.margin * g.h, -g.margin * g.h, 0.0};
+  g.domain_height = size[2];
+  g.ground = preset.grid.ground;
+  return g;
+}
+
+std::uint64_t estimateSimulationBytes(const GridLayout& layout) {
+  const std::uint64_t cells = layout.cellCount();
+  const std::uint64_t rows = std::uint64_t(layout.ny) * std::uint64_t(layout.nz);
+  // Rock lies inside the domain: the grid less its margin on four sides and the top.
+  const auto inner = [&](int n, int sides) { return std::uint64_t(std::max(0, n - sides * layout.margin)); };
+  const std::uint64_t domain = inner(layout.nx, 2) * inner(layout.ny, 2) * inner(layout.nz, 1);
+  const std::uint64_t apron = std::uint64_t(layout.margin);
+  const std::uint64_t field_bits = (layout.nx + 2 * apron + 128) * (layout.ny + 2 * apron) * (layout.nz + 2 * apron);
+  // material (1 byte a cell); integrity and durability (4 + 4 bytes a rock
+  // cell, at most the domain, plus a span header per row for each); the air
+  // field; five bit planes (exposed, colluvium, and rockfall's visited,
+  // removed and clustered marks); work lists for the exposed voxels, at most
+  // about a tenth of the domain at once (cell, flag and counts: 16 bytes).
+  return cells + domain * 8 + rows * 2 * 32 + field_bits / 8 + cells * 5 / 8 + domain / 10 * 16;
+}
+
+}  // namespace rockbake
