@@ -179,18 +179,22 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
                                                                       return rock.material[cell] == Material::Colluvium;
                                                                     }),
                                      "colluvium", *transform);
-    auto durabilityGrid =
-        namedGrid<openvdb::FloatGrid>(denseToTree<openvdb::FloatTree>(layout, 0.0f,
-                                                                      [&](std::size_t cell, float& value) {
-                                                                        value = rock.durability[cell];
-                                                                        return rock.material[cell] == Material::Rock;
-                                                                      }),
-                                      "durability", *transform);
     // The mesh stage's field is shared with it, so it is written from a shallow copy under our name.
     // Otherwise closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
     openvdb::FloatGrid::Ptr sdfGrid =
         rock_sdf && rock_sdf->grid ? rock_sdf->grid->copy()
                                    : openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
+    // Built after the level set, whose working grids are the largest part of
+    // writing: the two are never in memory at once.
+    auto durabilityGrid =
+        namedGrid<openvdb::FloatGrid>(denseToTree<openvdb::FloatTree>(layout, 0.0f,
+                                                                      [&](std::size_t cell, float& value) {
+                                                                        if (rock.material[cell] != Material::Rock)
+                                                                          return false;
+                                                                        value = rock.durability[cell];
+                                                                        return true;
+                                                                      }),
+                                      "durability", *transform);
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 
