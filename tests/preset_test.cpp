@@ -8,7 +8,7 @@
 #include "pipeline/read_inputs.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
-#include "sim/voxel_rock.h"
+#include "sim/grid_layout.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -194,15 +194,17 @@ TEST(Preset, TheMemoryGuardRefusesByTheSimulationsOwnEstimate) {
   ASSERT_LT(refused, 8192);
   p.grid.resolution = refused;
   const std::uint64_t needed = estimateSimulationBytes(computeGridLayout(p));
-  PresetOverrides overrides;
-  overrides.resolution = refused;
-  const std::string error = errorOf(yaml, overrides);
-  EXPECT_NE(error.find("grid.resolution"), std::string::npos) << error;
-  EXPECT_NE(error.find("needs about " + std::to_string(needed >> 20) + " MiB"), std::string::npos) << error;
-  // A little below it the same preset is accepted (and nothing was allocated
-  // for the refused one: the guard runs while reading the preset).
-  overrides.resolution = refused * 7 / 8;
-  EXPECT_EQ(errorOf(yaml, overrides), "no error");
+  try {
+    checkGridFitsInMemory(p);
+    FAIL() << "resolution " << refused << " was accepted";
+  } catch (const InputError& e) {
+    const std::string error = e.what();
+    EXPECT_NE(error.find("grid.resolution"), std::string::npos) << error;
+    EXPECT_NE(error.find("needs about " + std::to_string(needed >> 20) + " MiB"), std::string::npos) << error;
+  }
+  // A little below it the same preset is accepted.
+  p.grid.resolution = refused * 7 / 8;
+  EXPECT_NO_THROW(checkGridFitsInMemory(p));
 }
 
 TEST(Preset, TheMemoryEstimateIsAboutOneBytePerCellPlusEightPerDomainCell) {

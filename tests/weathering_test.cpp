@@ -363,7 +363,7 @@ TEST(Weathering, SameRockOnAnyThreadCountAndAlphaPath) {
   p.rockfall.mode = RockfallMode::Drop;
   p.colluvium = {0.5, 35.0, 0.05};
   p.stop.cycles = 8;
-  const VoxelRock start = buildInitialRock(p);
+  const VoxelRock start = buildInitialRock(resolveShape(p), p);
 
   struct Run {
     const char* name;
