@@ -160,6 +160,8 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   stages["simulate_rockfall"] = rockfall;
   summary.cycles = int(weathered.cycles.size());
   summary.final_rock = weathered.rock.count(Material::Rock);
+  // No later stage reads integrity: its memory goes before the VDB and meshes.
+  weathered.rock.integrity = RowSpans();
 
   check_cancel();
   if (!options.mesh) {
