@@ -1,8 +1,11 @@
 // Bubble counting and weathering cycles (figures in bench/README.md).
 //
-//   BM_AlphaNaive / BM_AlphaRows: α for a radius-6 sphere bubble on the
-//     exposed voxels of a weathering 96³ cube, the naive triple loop against
-//     the bit-row counter (checked equal before timing).
+//   BM_AlphaNaive/R, BM_AlphaRows/R, BM_AlphaRuns/R/path: α for a radius-R
+//     sphere bubble (R = 6, 19) on the exposed voxels of a weathering 96³
+//     cube: the naive triple loop, the bit-row counter one voxel at a time,
+//     and runs of voxels along x as the simulation counts them, on the
+//     portable (0) and AVX-512 (1) paths. Every count is checked against the
+//     naive loop before timing.
 //   BM_Cycle/N/threads: one weathering cycle of an N³ cube.
 //   BM_CycleFixedRock/N: one cycle of the same 32³ rock in an N³ grid: the
 //     cost must follow the exposed voxels, not the grid's volume.
@@ -72,7 +75,7 @@ const WeatheredRock& weatheredCube() {
 
 void BM_AlphaNaive(benchmark::State& state) {
   const WeatheredRock& w = weatheredCube();
-  const Bubble bubble = makeSphereBubble(6.0);
+  const Bubble bubble = makeSphereBubble(double(state.range(0)));
   for (auto _ : state) {
     long total = 0;
     for (const auto& v : w.exposed) total += naiveCountAir(w.rock, bubble, v[0], v[1], v[2]);
@@ -81,16 +84,49 @@ void BM_AlphaNaive(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
 }
 
+// The exposed voxels grouped as the simulation groups them: up to 8 of one
+// x-row, at most 7 apart.
+struct Run {
+  int x0, y, z, n;
+  std::uint8_t dx[AirField::kRunWidth];
+};
+std::vector<Run> exposedRuns(const WeatheredRock& w) {
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < w.exposed.size();) {
+    Run r{w.exposed[i][0], w.exposed[i][1], w.exposed[i][2], 1, {0}};
+    while (r.n < AirField::kRunWidth && i + std::size_t(r.n) < w.exposed.size()) {
+      const auto& v = w.exposed[i + std::size_t(r.n)];
+      if (v[1] != r.y || v[2] != r.z || v[0] - r.x0 >= AirField::kRunWidth) break;
+      r.dx[r.n++] = std::uint8_t(v[0] - r.x0);
+    }
+    runs.push_back(r);
+    i += std::size_t(r.n);
+  }
+  return runs;
+}
+
+void checkAgainstNaive(const WeatheredRock& w, const Bubble& bubble, const AirField& field,
+                       const AirField::BoundBubble& bound, AlphaPath path) {
+  std::size_t i = 0;
+  for (const Run& r : exposedRuns(w)) {
+    int counts[AirField::kRunWidth];
+    field.countAirRun(path, bound, r.x0, r.y, r.z, r.dx, r.n, counts);
+    for (int k = 0; k < r.n; ++k, ++i) {
+      const int naive = naiveCountAir(w.rock, bubble, r.x0 + r.dx[k], r.y, r.z);
+      if (counts[k] != naive || field.countAir(bound, r.x0 + r.dx[k], r.y, r.z) != naive) {
+        std::cerr << "bit-row count differs from the naive loop (" << alphaPathName(path) << ")\n";
+        std::abort();
+      }
+    }
+  }
+}
+
 void BM_AlphaRows(benchmark::State& state) {
   const WeatheredRock& w = weatheredCube();
-  const Bubble bubble = makeSphereBubble(6.0);
+  const Bubble bubble = makeSphereBubble(double(state.range(0)));
   const AirField field(w.rock, bubble.reach);
   const auto bound = field.bind(bubble);
-  for (const auto& v : w.exposed)
-    if (field.countAir(bound, v[0], v[1], v[2]) != naiveCountAir(w.rock, bubble, v[0], v[1], v[2])) {
-      std::cerr << "bit-row count differs from the naive loop\n";
-      std::abort();
-    }
+  checkAgainstNaive(w, bubble, field, bound, AlphaPath::Portable);
   for (auto _ : state) {
     long total = 0;
     for (const auto& v : w.exposed) total += field.countAir(bound, v[0], v[1], v[2]);
@@ -98,6 +134,32 @@ void BM_AlphaRows(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
   state.counters["exposed"] = double(w.exposed.size());
+  state.counters["pieces"] = double(bound.pieces);
+}
+
+void BM_AlphaRuns(benchmark::State& state) {
+  const AlphaPath path = state.range(1) == 1 ? AlphaPath::Avx512 : AlphaPath::Portable;
+  if (!alphaPathAvailable(path)) {
+    state.SkipWithError("this CPU lacks AVX-512F/VPOPCNTDQ");
+    return;
+  }
+  const WeatheredRock& w = weatheredCube();
+  const Bubble bubble = makeSphereBubble(double(state.range(0)));
+  const AirField field(w.rock, bubble.reach);
+  const auto bound = field.bind(bubble);
+  checkAgainstNaive(w, bubble, field, bound, path);
+  const std::vector<Run> runs = exposedRuns(w);
+  for (auto _ : state) {
+    long total = 0;
+    int counts[AirField::kRunWidth];
+    for (const Run& r : runs) {
+      field.countAirRun(path, bound, r.x0, r.y, r.z, r.dx, r.n, counts);
+      for (int k = 0; k < r.n; ++k) total += counts[k];
+    }
+    benchmark::DoNotOptimize(total);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
+  state.counters["voxels_per_run"] = double(w.exposed.size()) / double(runs.size());
 }
 
 // Times cycles of a simulation started fresh for each batch of iterations.
@@ -143,8 +205,9 @@ void BM_CycleFixedRock(benchmark::State& state) {
   timeCycles(state, cube(32, int(state.range(0)), 6.0));
 }
 
-BENCHMARK(BM_AlphaNaive)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_AlphaRows)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlphaNaive)->Arg(6)->Arg(19)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlphaRows)->Arg(6)->Arg(19)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlphaRuns)->Args({6, 0})->Args({6, 1})->Args({19, 0})->Args({19, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cycle)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CycleWithDebris)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CycleFixedRock)

@@ -11,6 +11,9 @@ packages=(
   libtinygltf-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
+  # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
+  # ASan/UBSan runtimes; llvm-14 brings llvm-symbolizer for readable reports.
+  clang-14 libclang-rt-14-dev llvm-14
   # A real single-node Slurm cluster for tests/slurm, which starts its own daemons on free
   # ports with every file in /tmp. The packages' slurmctld and slurmd services never start
   # (their init scripts need /etc/slurm/slurm.conf, which nothing writes); a system munged,

@@ -305,8 +305,10 @@ TEST(AssetFaithful, AOneVoxelNeckStaysConnected) {
         const bool base = z < 5 && x >= 5 && x < 15 && y >= 5 && y < 15;
         const bool neck = z >= 5 && z < 8 && x == 10 && y == 10;
         const bool cap = z >= 8 && z < 12 && x >= 6 && x < 14 && y >= 6 && y < 14;
-        if (base || neck || cap)
-          rock.material[g.index(x, y, z)] = Material::Rock, rock.durability[g.index(x, y, z)] = 1;
+        if (base || neck || cap) {
+          rock.material[g.index(x, y, z)] = Material::Rock;
+          rock.durability.set(g.index(x, y, z), 1.0f);
+        }
       }
   ASSERT_EQ(voxelComponents(rock), 1u);
   p.mesh.smoothing = 2.0;

@@ -83,6 +83,88 @@ TEST(AirField, CountsEqualTheNaiveLoopForEveryBubbleKind) {
   }
 }
 
+// Runs of voxels along x, on one α path, against the naive loop: random
+// grids, every bubble kind, rows shorter and longer than one load's piece
+// (a long row is cut into pieces of AirField::kMaxPiece cells), ground on/off.
+void expectRunsEqualTheNaiveLoop(AlphaPath path) {
+  std::vector<NamedBubble> bubbles = allBubbleKinds();
+  bubbles.push_back({"long ellipsoid (rows up to 61)", makeEllipsoidBubble({30.5, 2.0, 1.5})});
+  bubbles.push_back({"long box (rows of 111)", makeBoxBubble({55.0, 1.0, 1.0})});
+  bubbles.push_back({"sphere r19", makeSphereBubble(19.0)});
+  for (bool ground : {true, false}) {
+    const VoxelRock rock = test::randomRock(75, 9, 8, ground ? 21 : 22, 0.5, ground);
+    const GridLayout& g = rock.layout;
+    for (const auto& [name, bubble] : bubbles) {
+      const AirField field(rock, std::max(1, bubble.reach));
+      const auto bound = field.bind(bubble);
+      std::uint64_t draw = 0;
+      for (int z = 0; z < g.nz; ++z)
+        for (int y = 0; y < g.ny; ++y)
+          for (int x0 = 0; x0 < g.nx; ++x0) {
+            // A run from x0 of 1..8 voxels at random offsets within 8 cells.
+            std::uint8_t dx[AirField::kRunWidth] = {0};
+            int n = 1;
+            for (int d = 1; d < AirField::kRunWidth && x0 + d < g.nx; ++d)
+              if (counterHash(7, purposeId("test-run"), draw++, 0) % 2) dx[n++] = std::uint8_t(d);
+            int counts[AirField::kRunWidth];
+            field.countAirRun(path, bound, x0, y, z, dx, n, counts);
+            for (int k = 0; k < n; ++k)
+              ASSERT_EQ(counts[k], naiveCountAir(rock, bubble, x0 + dx[k], y, z))
+                  << alphaPathName(path) << ", " << name << " at " << x0 + dx[k] << "," << y << "," << z << " (run of "
+                  << n << " from " << x0 << ") ground=" << ground;
+          }
+    }
+  }
+}
+
+TEST(AirField, PortableRunsEqualTheNaiveLoop) {
+  expectRunsEqualTheNaiveLoop(AlphaPath::Portable);
+}
+
+TEST(AirField, Avx512RunsEqualTheNaiveLoop) {
+  if (!alphaPathAvailable(AlphaPath::Avx512)) GTEST_SKIP() << "this CPU lacks AVX-512F/VPOPCNTDQ";
+  expectRunsEqualTheNaiveLoop(AlphaPath::Avx512);
+}
+
+TEST(AirField, LongRowsAreCutIntoPiecesOfOneLoad) {
+  const VoxelRock rock = test::randomRock(130, 5, 5, 3, 0.5, true);
+  const AirField field(rock, 60);
+  // A 121-cell row (box half extent 60): three pieces of at most 50 cells.
+  EXPECT_EQ(field.bind(makeBoxBubble({60.0, 0.0, 0.0})).pieces, 3u);
+  EXPECT_EQ(field.bind(makeSphereBubble(6.0)).pieces, makeSphereBubble(6.0).rows.size());
+}
+
+TEST(AirField, AnUnavailablePathCannotBeForced) {
+  const AlphaPath before = alphaPath();
+  EXPECT_NO_THROW(setAlphaPath(AlphaPath::Portable));
+  EXPECT_EQ(alphaPath(), AlphaPath::Portable);
+  if (alphaPathAvailable(AlphaPath::Avx512))
+    EXPECT_NO_THROW(setAlphaPath(AlphaPath::Avx512));
+  else
+    EXPECT_THROW(setAlphaPath(AlphaPath::Avx512), std::invalid_argument);
+  setAlphaPath(before);
+}
+
+TEST(RowSpans, ReadAndWriteLikeADenseArray) {
+  GridLayout g;
+  g.nx = 17, g.ny = 5, g.nz = 4;
+  for (float fill : {0.f, 1.f}) {
+    RowSpans spans(g, fill);
+    std::vector<float> dense(g.cellCount(), fill);
+    for (std::uint64_t i = 0; i < 3000; ++i) {
+      const std::size_t cell = std::size_t(counterHash(5, purposeId("test-spans"), i, 0) % g.cellCount());
+      // Half the writes put back the fill value, which must read back too.
+      const float value = counterHash(5, purposeId("test-spans"), i, 1) % 2 ? fill : float(i % 7) * 0.5f;
+      spans.set(cell, value);
+      dense[cell] = value;
+      ASSERT_EQ(spans[cell], value);
+    }
+    EXPECT_TRUE(spans.toDense() == dense);
+    for (std::size_t cell = 0; cell < g.cellCount(); ++cell) ASSERT_EQ(spans[cell], dense[cell]);
+    EXPECT_LE(spans.storedCells(), g.cellCount());
+  }
+}
+
 TEST(AirField, CountsStayExactAfterCellsChange) {
   VoxelRock rock = test::randomRock(30, 12, 14, 5, 0.5, true);
   const Bubble bubble = makeSphereBubble(4.5);

@@ -244,7 +244,7 @@ VoxelRock randomRock(int nx, int ny, int nz, unsigned seed) {
     for (int y = 8; y < std::min(ny, 16); ++y)
       for (int x = 8; x < std::min(nx, 16); ++x) {
         rock.material[g.index(x, y, z)] = Material::Rock;
-        rock.durability[g.index(x, y, z)] = 1.5f;
+        rock.durability.set(g.index(x, y, z), 1.5f);
       }
   return rock;
 }
@@ -261,7 +261,7 @@ VoxelRock sphereRock(int n) {
         const bool inside = std::sqrt(dx * dx + dy * dy + dz * dz) < 0.4 * n + (random() % 3);
         const std::size_t cell = g.index(x, y, z);
         rock.material[cell] = inside ? Material::Rock : (z < 2 ? Material::Colluvium : Material::Air);
-        rock.durability[cell] = inside ? 0.5f + float(z) / float(n) : 0.0f;
+        rock.durability.set(cell, inside ? 0.5f + float(z) / float(n) : 0.0f);
       }
     }
   }
@@ -287,8 +287,8 @@ TEST(RockVdb, RoundTripsMaterialsAndDurability) {
 
   const VoxelRock back = readRockVdb(file, rock.layout);
   EXPECT_TRUE(back.material == rock.material);
-  EXPECT_TRUE(back.durability == rock.durability);
-  EXPECT_TRUE(back.integrity == std::vector<float>(rock.layout.cellCount(), 1.0f));
+  EXPECT_TRUE(back.durability.toDense() == rock.durability.toDense());
+  EXPECT_TRUE(back.integrity.toDense() == std::vector<float>(rock.layout.cellCount(), 1.0f));
 }
 
 TEST(RockVdb, LevelSetIsNegativeInsideAndPositiveOutside) {
@@ -362,7 +362,7 @@ TEST(RockVdb, SameRockGivesIdenticalBytesAndAHashedUuid) {
   EXPECT_TRUE(std::regex_match(a.substr(21, 36), uuid)) << a.substr(21, 36);
 
   VoxelRock other = rock;  // one voxel different: a different file and UUID
-  other.durability[other.layout.index(8, 8, 0)] += 0.5f;
+  other.durability.set(other.layout.index(8, 8, 0), other.durability[other.layout.index(8, 8, 0)] + 0.5f);
   writeRockVdb(other, dir.path() / "c.vdb");
   EXPECT_NE(readBytes(dir.path() / "c.vdb").substr(21, 36), a.substr(21, 36));
 }

@@ -1,5 +1,6 @@
 // Preset loading and validation (SPEC §5, §6).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -7,6 +8,7 @@
 #include "pipeline/read_inputs.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "sim/grid_layout.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -175,6 +177,47 @@ TEST(Preset, AGridBeyondThisMachinesMemoryIsRefusedAtItsKey) {
   Preset fine = huge;
   fine.grid.resolution = 32;
   EXPECT_NO_THROW(checkGridFitsInMemory(fine));
+}
+
+TEST(Preset, TheMemoryGuardRefusesByTheSimulationsOwnEstimate) {
+  const std::string yaml =
+      "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n"
+      "grid: {size: [1, 1, 1], resolution: 256}\nbubbles: [{up_to: 1, bubble: {sphere: {radius: 0.01}}}]\n";
+  Preset p = parsePreset(yaml, "dir/p.yaml");
+  const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+  // The smallest resolution whose estimate passes 60 % of this machine's memory.
+  int refused = 256;
+  for (; refused < 8192; refused += refused / 8) {
+    p.grid.resolution = refused;
+    if (estimateSimulationBytes(computeGridLayout(p)) > physical / 10 * 6) break;
+  }
+  ASSERT_LT(refused, 8192);
+  p.grid.resolution = refused;
+  const std::uint64_t needed = estimateSimulationBytes(computeGridLayout(p));
+  try {
+    checkGridFitsInMemory(p);
+    FAIL() << "resolution " << refused << " was accepted";
+  } catch (const InputError& e) {
+    const std::string error = e.what();
+    EXPECT_NE(error.find("grid.resolution"), std::string::npos) << error;
+    EXPECT_NE(error.find("needs about " + std::to_string(needed >> 20) + " MiB"), std::string::npos) << error;
+  }
+  // A little below it the same preset is accepted.
+  p.grid.resolution = refused * 7 / 8;
+  EXPECT_NO_THROW(checkGridFitsInMemory(p));
+}
+
+TEST(Preset, TheMemoryEstimateIsAboutOneBytePerCellPlusEightPerDomainCell) {
+  GridLayout g;
+  g.nx = 322, g.ny = 322, g.nz = 417, g.margin = 33;  // goblin at resolution 384
+  const double cells = double(g.cellCount());
+  const double domain = 256.0 * 256.0 * 384.0;
+  const double estimate = double(estimateSimulationBytes(g));
+  EXPECT_GT(estimate, cells + 8 * domain);
+  // Bit planes, the air field and work lists add under a byte a cell and two a
+  // domain cell; the old layout took 17 bytes a cell.
+  EXPECT_LT(estimate, 2 * cells + 10 * domain);
+  EXPECT_LT(estimate, 17 * cells / 2);
 }
 
 TEST(Preset, PaletteColoursAreSrgbHexOrLists) {

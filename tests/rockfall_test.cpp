@@ -22,8 +22,8 @@ VoxelRock emptyRock(int nx, int ny, int nz) {
   rock.layout.h = 0.1;
   rock.layout.ground = true;
   rock.material.assign(rock.layout.cellCount(), Material::Air);
-  rock.integrity.assign(rock.layout.cellCount(), 1.f);
-  rock.durability.assign(rock.layout.cellCount(), 0.f);
+  rock.integrity = RowSpans(rock.layout, 1.f);
+  rock.durability = RowSpans(rock.layout, 0.f);
   return rock;
 }
 
@@ -33,7 +33,7 @@ void fill(VoxelRock& rock, std::array<int, 3> lo, std::array<int, 3> hi, Materia
       for (int x = lo[0]; x < hi[0]; ++x) {
         const std::size_t i = rock.layout.index(x, y, z);
         rock.material[i] = m;
-        rock.durability[i] = m == Material::Rock ? durability : 0.f;
+        rock.durability.set(i, m == Material::Rock ? durability : 0.f);
       }
 }
 
@@ -72,7 +72,7 @@ bool nothingFloats(const VoxelRock& rock) {
 TEST(Rockfall, AFloatingBlockFallsAndRestsOnTheGround) {
   VoxelRock rock = emptyRock(12, 12, 20);
   fill(rock, {3, 3, 10}, {7, 8, 13}, Material::Rock, 2.5f);
-  rock.integrity[rock.layout.index(3, 3, 10)] = 0.25f;
+  rock.integrity.set(rock.layout.index(3, 3, 10), 0.25f);
   RockfallSolver solver(rock.layout);
   const RockfallOutcome out = solver.apply(rock, RockfallMode::Drop, {}, true);
   EXPECT_EQ(out.fallen, 4u * 5u * 3u);

@@ -158,17 +158,17 @@ VoxelRock randomRock(int nx, int ny, int nz, std::uint64_t seed, double fill, bo
   g.origin = {-1.25, -0.75, 0.0};
   g.ground = ground;
   rock.material.assign(g.cellCount(), Material::Air);
-  rock.integrity.assign(g.cellCount(), 1.0f);
-  rock.durability.assign(g.cellCount(), 0.0f);
   for (std::size_t i = 0; i < rock.material.size(); ++i) {
     const double u = unitInterval(counterHash(seed, purposeId("test-fill"), 0, i));
-    if (u < fill * 0.8) {
+    if (u < fill * 0.8)
       rock.material[i] = Material::Rock;
-      rock.durability[i] = float(0.1 + 2.9 * unitInterval(counterHash(seed, purposeId("test-durability"), 0, i)));
-    } else if (u < fill) {
+    else if (u < fill)
       rock.material[i] = Material::Colluvium;
-    }
   }
+  resetRockValues(rock);
+  for (std::size_t i = 0; i < rock.material.size(); ++i)
+    if (rock.material[i] == Material::Rock)
+      rock.durability.set(i, float(0.1 + 2.9 * unitInterval(counterHash(seed, purposeId("test-durability"), 0, i))));
   return rock;
 }
 

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <deque>
 
+#include <tbb/global_control.h>
+
+#include "sim/curvature.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 #include "test_support.h"
@@ -342,6 +345,68 @@ TEST(Weathering, UntilStopsAtTheRockVolumeFraction) {
   EXPECT_LE(double(result.cycles.back().rock), 0.8 * double(cube.count(Material::Rock)));
   ASSERT_GT(result.cycles.size(), 1u);
   EXPECT_GT(double(result.cycles[result.cycles.size() - 2].rock), 0.8 * double(cube.count(Material::Rock)));
+}
+
+TEST(Weathering, SameRockOnAnyThreadCountAndAlphaPath) {
+  // Everything on: ground, rockfall, colluvium with removal, spheroidal and
+  // cavernous weathering, and an ellipsoid whose rows (up to 55 cells) are
+  // longer than one load's piece.
+  Preset p = cubePreset(2.4, 40, 0.3);  // h = 0.06
+  p.grid.ground = true;
+  p.grid.size = {3.6, 3.6, 2.4};
+  p.shape.center = Vec3d{1.8, 1.8, 0.0};
+  p.bubbles[0].bubble.kind = BubbleSpec::Kind::Ellipsoid;
+  p.bubbles[0].bubble.extents = {1.65, 0.3, 0.24};
+  p.bubbles[0].spheroidal = 0.7;
+  p.bubbles[0].cavernous = 0.3;
+  p.response = power(1.0);
+  p.rockfall.mode = RockfallMode::Drop;
+  p.colluvium = {0.5, 35.0, 0.05};
+  p.stop.cycles = 8;
+  const VoxelRock start = buildInitialRock(resolveShape(p), p);
+
+  struct Run {
+    const char* name;
+    int threads;
+    AlphaPath path;
+  };
+  std::vector<Run> runs = {{"1 thread, portable", 1, AlphaPath::Portable},
+                           {"2 threads, portable", 2, AlphaPath::Portable}};
+  if (alphaPathAvailable(AlphaPath::Avx512))
+    runs.insert(runs.end(), {{"1 thread, avx512", 1, AlphaPath::Avx512}, {"2 threads, avx512", 2, AlphaPath::Avx512}});
+  const AlphaPath before = alphaPath();
+  std::vector<WeatheringResult> results;
+  for (const Run& run : runs) {
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(run.threads));
+    setAlphaPath(run.path);
+    WeatheringSimulation sim(start, p);
+    WeatheringResult result;
+    while (!sim.finished()) {
+      result.cycles.push_back(sim.step());
+      // The colluvium count kept from deposits, crumbles and removals is the real one.
+      ASSERT_EQ(result.cycles.back().colluvium, sim.rock().count(Material::Colluvium)) << run.name;
+    }
+    result.rock = sim.release();
+    results.push_back(std::move(result));
+  }
+  setAlphaPath(before);
+  const WeatheringResult& first = results.front();
+  std::size_t decimated = 0, deposited = 0;
+  for (const auto& c : first.cycles) decimated += c.decimated, deposited += c.deposited;
+  EXPECT_GT(decimated, 1000u);
+  EXPECT_GT(deposited, 100u);
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    const WeatheringResult& other = results[r];
+    EXPECT_TRUE(other.rock.material == first.rock.material) << runs[r].name;
+    EXPECT_TRUE(other.rock.integrity.toDense() == first.rock.integrity.toDense()) << runs[r].name;
+    EXPECT_TRUE(other.rock.durability.toDense() == first.rock.durability.toDense()) << runs[r].name;
+    ASSERT_EQ(other.cycles.size(), first.cycles.size());
+    for (std::size_t i = 0; i < first.cycles.size(); ++i) {
+      EXPECT_EQ(other.cycles[i].exposed, first.cycles[i].exposed) << runs[r].name;
+      EXPECT_EQ(other.cycles[i].fallen, first.cycles[i].fallen) << runs[r].name;
+      EXPECT_EQ(other.cycles[i].removed, first.cycles[i].removed) << runs[r].name;
+    }
+  }
 }
 
 TEST(Weathering, TimeBecomesCyclesByVoxelSize) {

@@ -2,6 +2,7 @@
 // arguments, 1 any other failure; every failure prints what to fix.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -31,7 +32,9 @@
 #include "preset/library.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "preset/render_templates.h"
 #include "render/render_asset.h"
+#include "sim/grid_layout.h"
 
 namespace {
 
@@ -39,6 +42,25 @@ constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report Ctrl-C
+
+// What to say when memory runs out while `preset` is being baked (nullptr: while reading inputs).
+std::string outOfMemoryMessage(const rockbake::Preset* preset) {
+  if (!preset) return "out of memory while reading the inputs";
+  const std::uint64_t needed = rockbake::estimateSimulationBytes(rockbake::computeGridLayout(*preset));
+  return fmt::format("out of memory: lower grid.resolution ({} needs about {} MiB for the simulation alone)",
+                     preset->grid.resolution, needed >> 20);
+}
+
+// --seed: a whole number from 0 to 2^64 - 1, written as digits (CLI11 would wrap "-1" to 2^64 - 1).
+const CLI::Validator kSeedValidator(
+    [](std::string& text) -> std::string {
+      const bool digits = !text.empty() && text.size() <= 20 &&
+                          std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+      if (!digits || (text.size() == 20 && text > "18446744073709551615"))
+        return "must be a whole number from 0 to 18446744073709551615, found '" + text + "'";
+      return {};
+    },
+    "UINT64");
 
 // --threads N: at most N TBB workers while the returned object lives; 0 leaves all cores.
 std::unique_ptr<tbb::global_control> limitThreads(int threads) {
@@ -78,9 +100,16 @@ int runBake(const BakeArgs& args) {
   for (std::size_t i = 0; i < presets.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (presets[i].name == presets[j].name)
-        throw rockbake::InputError({args.presets[i]}, "name",
+        throw rockbake::InputError(presets[i].locate("name"), "name",
                                    "'" + presets[i].name + "' is also the name of " + args.presets[j],
                                    "assets are written to OUT/<name>; give each preset its own name");
+
+  // The render template of every preset exists before anything is baked (the default one too).
+  if (!args.no_mesh && !args.no_render)
+    for (const auto& preset : presets)
+      if (const auto problem =
+              rockbake::renderTemplateProblem(preset.render.template_name, rockbake::renderTemplatesDir()))
+        throw rockbake::InputError(preset.locate("render.template"), "render.template", *problem);
 
   for (std::size_t i = 0; i < presets.size(); ++i) {
     rockbake::BakeOptions options;
@@ -90,7 +119,14 @@ int runBake(const BakeArgs& args) {
     options.load_seconds = load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
-    const auto summary = rockbake::bakeAsset(presets[i], shapes[i], options);
+    rockbake::BakeSummary summary;
+    try {
+      summary = rockbake::bakeAsset(presets[i], shapes[i], options);
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error(outOfMemoryMessage(&presets[i]));
+    } catch (const std::length_error&) {
+      throw std::runtime_error(outOfMemoryMessage(&presets[i]));
+    }
     spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
   }
@@ -104,6 +140,9 @@ struct RenderArgs {
 };
 
 int runRender(const RenderArgs& args) {
+  if (!args.template_name.empty())
+    if (const auto problem = rockbake::renderTemplateProblem(args.template_name, rockbake::renderTemplatesDir()))
+      throw rockbake::InputError({"--template"}, "", *problem, "give the name of a template, never a path");
   const auto out = rockbake::rerenderAssetFolder({args.asset_dir, args.template_name, args.threads});
   spdlog::info("rendered {} in {:.1f} s", out.render_png.string(), out.seconds_total);
   return kExitOk;
@@ -191,9 +230,9 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
     if (!fs::is_directory(args.index_only))
       throw rockbake::InputError({args.index_only}, "", "not a folder", "give the OUT folder the shards baked into");
     const auto counts = rockbake::writeLibraryIndex(args.index_only, {}, {{"index_only", true}});
-    spdlog::info("{}: {} assets ok, {} failed", (fs::path(args.index_only) / rockbake::kIndexFile).string(),
-                 counts.ok + counts.skipped_resumed, counts.failed);
-    return kExitOk;
+    spdlog::info("{}: {} assets ok, {} failed, {} damaged", (fs::path(args.index_only) / rockbake::kIndexFile).string(),
+                 counts.ok + counts.skipped_resumed, counts.failed, counts.damaged);
+    return counts.damaged > 0 ? kExitFailure : kExitOk;
   }
   if (args.library.empty())
     throw rockbake::InputError({"<command line>"}, "", "a library file is needed (or --index-only OUT)",
@@ -263,7 +302,7 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("presets", bake.presets, "Preset YAML files")->required()->check(CLI::ExistingFile);
   bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (default: out)");
   bake_cmd->add_option("--threads", bake.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  bake_cmd->add_option("--seed", bake.seed, "Override the presets' seed");
+  bake_cmd->add_option("--seed", bake.seed, "Override the presets' seed")->check(kSeedValidator);
   bake_cmd->add_option("--set", bake.sets, "Override a preset key: key.path=YAML value (repeatable)");
   bake_cmd->add_option("--resolution", bake.resolution, "Override grid.resolution (voxels along the longest side)")
       ->check(kResolutionRange);
@@ -291,7 +330,7 @@ int main(int argc, char** argv) {
       "show", "Print the resolved preset as JSON: extends merged, overrides applied, every default filled in");
   preset_show_cmd->add_option("preset", preset_show.preset, "A preset YAML file")->required();
   preset_show_cmd->add_option("--set", preset_show.sets, "Override a preset key: key.path=YAML value (repeatable)");
-  preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed");
+  preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed")->check(kSeedValidator);
   preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
       ->check(kResolutionRange);
 
@@ -339,8 +378,14 @@ int main(int argc, char** argv) {
   } catch (const rockbake::InputError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("{}", outOfMemoryMessage(nullptr));
+    return kExitFailure;
+  } catch (const std::length_error&) {  // a container asked for more than it can ever hold
+    spdlog::error("{}", outOfMemoryMessage(nullptr));
+    return kExitFailure;
   } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
+    spdlog::error("{}", rockbake::escapeControlBytes(e.what()));
     return kExitFailure;
   }
   return kExitFailure;

@@ -3,16 +3,30 @@
 #include <fmt/format.h>
 
 namespace rockbake {
+
+std::string escapeControlBytes(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f)
+      out += fmt::format("\\x{:02x}", byte);
+    else
+      out += c;
+  }
+  return out;
+}
+
 namespace {
 
 std::string formatMessage(const SourceLocation& where, const std::string& key_path, const std::string& problem,
                           const std::string& hint) {
-  std::string message = where.file;
+  std::string message = escapeControlBytes(where.file);
   if (where.line > 0) message += fmt::format(":{}", where.line);
   if (where.line > 0 && where.column > 0) message += fmt::format(":{}", where.column);
   if (!message.empty()) message += ": ";
-  if (!key_path.empty()) message += fmt::format("{}: ", key_path);
-  message += problem;
+  if (!key_path.empty()) message += fmt::format("{}: ", escapeControlBytes(key_path));
+  message += escapeControlBytes(problem);
   if (!hint.empty()) message += fmt::format(" ({})", hint);
   return message;
 }

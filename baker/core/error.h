@@ -14,8 +14,13 @@ struct SourceLocation {
   int column = 0;
 };
 
+// `text` with every control byte (and DEL) written as \xNN: what an input holds
+// may end up in a message, and must not reach the terminal raw.
+std::string escapeControlBytes(const std::string& text);
+
 // A problem with what the user gave us: a preset, a file it names, a flag.
-// what() is the full message: "file:line:col: key.path: problem. hint".
+// what() is the full message: "file:line:col: key.path: problem. hint", with
+// control bytes in the file, key path and problem escaped.
 class InputError : public std::runtime_error {
  public:
   InputError(SourceLocation where, std::string key_path, std::string problem, std::string hint = {});

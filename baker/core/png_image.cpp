@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -42,10 +43,30 @@ std::vector<std::uint8_t> readPng(const std::filesystem::path& file, png_uint_32
   if (!stream) fail(file, std::generic_category().message(errno));
 
   // libpng says only "Read Error" for a short non-PNG file; check the signature ourselves.
-  png_byte signature[8] = {};
-  const std::size_t signature_bytes = std::fread(signature, 1, sizeof signature, stream.get());
-  if (signature_bytes != sizeof signature || png_sig_cmp(signature, 0, sizeof signature) != 0) {
+  png_byte head[33] = {};  // the signature and the IHDR chunk
+  const std::size_t head_bytes = std::fread(head, 1, sizeof head, stream.get());
+  if (head_bytes < 8 || png_sig_cmp(head, 0, 8) != 0) {
     fail(file, "not a PNG file (no PNG signature)");
+  }
+  if (head_bytes == sizeof head && std::memcmp(head + 12, "IHDR", 4) == 0) {
+    // Deflate packs at most 1032 bytes into one: a header claiming more pixel data than the file can
+    // hold is refused before anything is allocated for the pixels.
+    const auto be32 = [&](int at) {
+      return std::uint64_t(head[at]) << 24 | std::uint64_t(head[at + 1]) << 16 | std::uint64_t(head[at + 2]) << 8 |
+             std::uint64_t(head[at + 3]);
+    };
+    const std::uint64_t w = be32(16), h = be32(20), depth = head[24];
+    const int colour_type = head[25];
+    const std::uint64_t channels = colour_type == 2 ? 3 : colour_type == 4 ? 2 : colour_type == 6 ? 4 : 1;
+    const std::uint64_t raw = h * ((w * channels * depth + 7) / 8 + 1);
+    std::error_code ec;
+    const std::uint64_t size = std::filesystem::file_size(file, ec);
+    if (w * h > kMaxPixels)
+      fail(file, std::to_string(w) + "x" + std::to_string(h) + " pixels is too large (at most " +
+                     std::to_string(kMaxPixels >> 20) + " M pixels)");
+    if (!ec && raw > size * 1032 + 65536)
+      fail(file, "truncated: a " + std::to_string(w) + "x" + std::to_string(h) + " image needs more data than " +
+                     std::to_string(size) + " bytes can hold");
   }
   std::rewind(stream.get());
 

@@ -1,6 +1,9 @@
 // The voxel rock: a dense grid of materials with per-voxel integrity and
 // durability (SPEC §2.1). Plain data the simulation gives to the mesh, export
-// and render stages.
+// and render stages. Materials take a byte per cell; integrity and durability
+// are kept only on each x-row's span of cells that ever held rock (RowSpans),
+// so a grid that is mostly air costs about one byte per cell plus eight per
+// rock voxel.
 //
 // Layout: x fastest, then y, then z (z up). Voxel (i, j, k) spans
 //   [origin + (i, j, k) h, origin + (i + 1, j + 1, k + 1) h]
@@ -52,13 +55,55 @@ struct GridLayout {
   double altitude(int z) const { return (origin[2] + (z + 0.5) * h) / domain_height; }
 };
 
+// One float per cell, stored only from the first to the last cell set in each
+// x-row (y, z); every other cell reads `fill`. Reads and writes equal those of
+// a dense array filled with `fill`. Writes to different rows may run in
+// parallel; a write outside its row's span grows that row (setting `fill`
+// there never does).
+struct RowSpans {
+  float fill = 0.f;
+  int nx = 0;                              // cells per row
+  std::vector<std::int32_t> first;         // per row (y + ny z): x of values[row][0]
+  std::vector<std::vector<float>> values;  // per row
+
+  RowSpans() = default;
+  RowSpans(const GridLayout& layout, float fill_value)
+      : fill(fill_value),
+        nx(layout.nx),
+        first(std::size_t(layout.ny) * std::size_t(layout.nz), 0),
+        values(first.size()) {}
+
+  float at(std::size_t row, int x) const {
+    const std::vector<float>& v = values[row];
+    const std::size_t i = std::size_t(std::int64_t(x) - first[row]);  // huge when x < first
+    return i < v.size() ? v[i] : fill;
+  }
+  float operator[](std::size_t cell) const { return at(cell / std::size_t(nx), int(cell % std::size_t(nx))); }
+  void set(std::size_t row, int x, float value);
+  void set(std::size_t cell, float value) { set(cell / std::size_t(nx), int(cell % std::size_t(nx)), value); }
+  bool covers(std::size_t row, int x) const { return std::size_t(std::int64_t(x) - first[row]) < values[row].size(); }
+  // Grows row's span to hold [x_lo, x_hi] exactly (new cells read fill), so
+  // that later writes there need no allocation.
+  void cover(std::size_t row, int x_lo, int x_hi);
+  // The stored value of a covered cell, for writes from parallel tasks.
+  float& slot(std::size_t row, int x) { return values[row][std::size_t(std::int64_t(x) - first[row])]; }
+  // Cells held in the spans (for memory figures and tests).
+  std::size_t storedCells() const;
+  // Every cell's value, as one dense array of nx × rows (for tests).
+  std::vector<float> toDense() const;
+};
+
 struct VoxelRock {
   GridLayout layout;
   std::vector<Material> material;  // cellCount()
-  std::vector<float> integrity;    // cellCount(); 1 at the start, rock voxels only meaningful
-  std::vector<float> durability;   // cellCount(); > 0 on rock voxels, 0 elsewhere
+  RowSpans integrity;              // 1 at the start, rock voxels only meaningful
+  RowSpans durability;             // > 0 on rock voxels, 0 elsewhere
 
   std::size_t count(Material m) const;
 };
+
+// Sets integrity to 1 and durability to 0 everywhere, with both spans sized
+// to each row's rock cells (so assigning them allocates nothing more).
+void resetRockValues(VoxelRock& rock);
 
 }  // namespace rockbake

@@ -131,7 +131,8 @@ std::string layoutText(const GridLayout& layout) {
 
 void checkArrays(const VoxelRock& rock, const fs::path& file) {
   const std::size_t cells = rock.layout.cellCount();
-  if (rock.material.size() != cells || rock.durability.size() != cells) {
+  if (rock.material.size() != cells || rock.durability.nx != rock.layout.nx ||
+      rock.durability.first.size() != std::size_t(rock.layout.ny) * std::size_t(rock.layout.nz)) {
     fail(file, "write", "the rock's arrays do not match its " + layoutText(rock.layout) + " layout");
   }
 }
@@ -183,19 +184,23 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
                                                                       return rock.material[cell] == Material::Colluvium;
                                                                     }),
                                      "colluvium", *transform);
-    auto durabilityGrid =
-        namedGrid<openvdb::FloatGrid>(denseToTree<openvdb::FloatTree>(layout, 0.0f,
-                                                                      [&](std::size_t cell, float& value) {
-                                                                        value = rock.durability[cell];
-                                                                        return rock.material[cell] == Material::Rock;
-                                                                      }),
-                                      "durability", *transform);
     // The mesh stage's field is shared with it, so it is written from a shallow copy under our name.
     // Otherwise closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
     openvdb::FloatGrid::Ptr sdfGrid =
         rock_sdf && rock_sdf->grid ? rock_sdf->grid->copy()
                                    : openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
     sdfGrid->setTransform(transform->copy());
+    // Built after the level set, whose working grids are the largest part of
+    // writing: the two are never in memory at once.
+    auto durabilityGrid =
+        namedGrid<openvdb::FloatGrid>(denseToTree<openvdb::FloatTree>(layout, 0.0f,
+                                                                      [&](std::size_t cell, float& value) {
+                                                                        if (rock.material[cell] != Material::Rock)
+                                                                          return false;
+                                                                        value = rock.durability[cell];
+                                                                        return true;
+                                                                      }),
+                                      "durability", *transform);
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 
@@ -225,8 +230,6 @@ VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
   VoxelRock rock;
   rock.layout = layout;
   rock.material.assign(layout.cellCount(), Material::Air);
-  rock.integrity.assign(layout.cellCount(), 1.0f);
-  rock.durability.assign(layout.cellCount(), 0.0f);
 
   // Visits every active voxel, tiles expanded, refusing any outside the layout.
   auto forEachActive = [&](const auto& grid, auto&& visit) {
@@ -267,7 +270,8 @@ VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
       if (rock.material[cell] == Material::Rock) fail(file, "read", "a voxel is both rock and colluvium");
       rock.material[cell] = Material::Colluvium;
     });
-    forEachActive(*durabilityGrid, [&](std::size_t cell, float value) { rock.durability[cell] = value; });
+    resetRockValues(rock);  // spans sized to the rock read above
+    forEachActive(*durabilityGrid, [&](std::size_t cell, float value) { rock.durability.set(cell, value); });
   } catch (const openvdb::Exception& e) {
     fail(file, "read", e.what());
   }

@@ -1,6 +1,7 @@
 #include "inputs/mesh_reader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -17,12 +18,27 @@ namespace {
   throw std::runtime_error(fmt::format("cannot read mesh {}: {}", file.string(), problem));
 }
 
+// A blockout is modelled by hand; anything larger is not one, and would be read whole into memory.
+constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t(1) << 30;
+
 std::string readAll(const std::filesystem::path& file) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  if (!ec && size > kMaxMeshFileBytes)
+    fail(file, fmt::format("the file is {} MiB; blockouts are read up to {} MiB", size >> 20, kMaxMeshFileBytes >> 20));
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "no such file, or it cannot be opened");
   std::ostringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
+}
+
+// NaN or infinite coordinates would pass as a vertex and break every test that follows ("not closed").
+void checkFinite(const std::filesystem::path& file, const std::array<double, 3>& p, std::size_t vertex) {
+  for (double c : p)
+    if (!std::isfinite(c))
+      fail(file,
+           fmt::format("vertex {} has a coordinate that is not a finite number ({} {} {})", vertex, p[0], p[1], p[2]));
 }
 
 void addPolygon(TriangleMesh& mesh, const std::vector<std::uint32_t>& polygon, const std::filesystem::path& file,
@@ -49,6 +65,7 @@ TriangleMesh readObj(const std::filesystem::path& file, const std::string& text)
     if (tag == "v") {
       std::array<double, 3> p;
       if (!(words >> p[0] >> p[1] >> p[2])) fail(file, fmt::format("line {}: a vertex needs x y z", number));
+      checkFinite(file, p, mesh.positions.size() + 1);
       mesh.positions.push_back(p);
     } else if (tag == "f") {
       polygon.clear();
@@ -61,7 +78,9 @@ TriangleMesh readObj(const std::filesystem::path& file, const std::string& text)
         }
         // Negative indices count back from the last vertex.
         const long resolved = index < 0 ? long(mesh.positions.size()) + index : index - 1;
-        if (resolved < 0) fail(file, fmt::format("line {}: vertex index {} is out of range", number, index));
+        if (resolved < 0 || std::size_t(resolved) >= mesh.positions.size())
+          fail(file,
+               fmt::format("line {}: vertex index {} past the {} vertices", number, index, mesh.positions.size()));
         polygon.push_back(std::uint32_t(resolved));
       }
       addPolygon(mesh, polygon, file, number);
@@ -72,7 +91,8 @@ TriangleMesh readObj(const std::filesystem::path& file, const std::string& text)
 
 // Binary STL repeats each corner per triangle; shared corners are merged by position.
 std::uint32_t vertexOf(TriangleMesh& mesh, std::map<std::array<double, 3>, std::uint32_t>& index,
-                       const std::array<double, 3>& p) {
+                       const std::array<double, 3>& p, const std::filesystem::path& file) {
+  checkFinite(file, p, mesh.positions.size() + 1);
   const auto [it, inserted] = index.emplace(p, std::uint32_t(mesh.positions.size()));
   if (inserted) mesh.positions.push_back(p);
   return it->second;
@@ -91,7 +111,7 @@ TriangleMesh readStl(const std::filesystem::path& file, const std::string& bytes
       if (word != "vertex") continue;
       std::array<double, 3> p;
       if (!(in >> p[0] >> p[1] >> p[2])) fail(file, "a vertex needs x y z");
-      triangle[std::size_t(corner++)] = vertexOf(mesh, index, p);
+      triangle[std::size_t(corner++)] = vertexOf(mesh, index, p, file);
       if (corner == 3) mesh.triangles.push_back(triangle), corner = 0;
     }
     return mesh;
@@ -107,7 +127,7 @@ TriangleMesh readStl(const std::filesystem::path& file, const std::string& bytes
     for (int c = 0; c < 3; ++c) {
       float xyz[3];
       std::memcpy(xyz, record + 12 * c, 12);
-      triangle[std::size_t(c)] = vertexOf(mesh, index, {xyz[0], xyz[1], xyz[2]});
+      triangle[std::size_t(c)] = vertexOf(mesh, index, {xyz[0], xyz[1], xyz[2]}, file);
     }
     mesh.triangles.push_back(triangle);
   }
@@ -131,6 +151,11 @@ TriangleMesh readPly(const std::filesystem::path& file, const std::string& bytes
     } else if (tag == "element") {
       std::size_t n = 0;
       words >> element >> n;
+      // Every vertex and face takes at least a byte after the header: a count past the file's size is a lie
+      // that must not reach an allocation.
+      if (n > bytes.size())
+        fail(file, fmt::format("the header says {} {} elements, more than a file of {} bytes can hold", n, element,
+                               bytes.size()));
       (element == "vertex" ? vertices : element == "face" ? faces : n) = n;
     } else if (tag == "property" && element == "vertex") {
       std::string type, name;
@@ -150,7 +175,9 @@ TriangleMesh readPly(const std::filesystem::path& file, const std::string& bytes
     return it - vertex_names.begin();
   };
   const std::ptrdiff_t ax = axis("x"), ay = axis("y"), az = axis("z");
-  std::size_t body = bytes.find('\n', header_end) + 1;
+  const std::size_t header_line_end = bytes.find('\n', header_end);
+  if (header_line_end == std::string::npos) fail(file, "nothing follows end_header");
+  std::size_t body = header_line_end + 1;
   TriangleMesh mesh;
   mesh.positions.reserve(vertices);
   std::vector<std::uint32_t> polygon;
@@ -162,10 +189,12 @@ TriangleMesh readPly(const std::filesystem::path& file, const std::string& bytes
       for (double& x : values)
         if (!(in >> x)) fail(file, fmt::format("vertex {} is incomplete", v));
       mesh.positions.push_back({values[std::size_t(ax)], values[std::size_t(ay)], values[std::size_t(az)]});
+      checkFinite(file, mesh.positions.back(), v);
     }
     for (std::size_t f = 0; f < faces; ++f) {
       std::size_t n = 0;
       if (!(in >> n)) fail(file, fmt::format("face {} is incomplete", f));
+      if (n > bytes.size()) fail(file, fmt::format("face {} says it has {} corners", f, n));
       polygon.assign(n, 0);
       for (auto& i : polygon)
         if (!(in >> i)) fail(file, fmt::format("face {} is incomplete", f));
@@ -216,11 +245,18 @@ TriangleMesh readPly(const std::filesystem::path& file, const std::string& bytes
       if (std::ptrdiff_t(k) == ay) p[1] = value;
       if (std::ptrdiff_t(k) == az) p[2] = value;
     }
+    checkFinite(file, p, v);
     mesh.positions.push_back(p);
   }
+  // Counts and indices must be whole numbers in range before they become sizes.
+  const auto whole = [&](double value, double limit, const char* what, std::size_t f) {
+    if (!(value >= 0 && value <= limit) || value != std::floor(value))
+      fail(file, fmt::format("face {}: {} {} is not a whole number from 0 to {}", f, what, value, limit));
+    return value;
+  };
   for (std::size_t f = 0; f < faces; ++f) {
-    polygon.assign(std::size_t(read_value(face_count_type, body)), 0);
-    for (auto& i : polygon) i = std::uint32_t(read_value(face_index_type, body));
+    polygon.assign(std::size_t(whole(read_value(face_count_type, body), double(bytes.size()), "corner count", f)), 0);
+    for (auto& i : polygon) i = std::uint32_t(whole(read_value(face_index_type, body), 4294967295.0, "index", f));
     addPolygon(mesh, polygon, file, f);
   }
   return mesh;

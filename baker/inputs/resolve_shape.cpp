@@ -13,7 +13,7 @@ GrayImage readShapeImage(const Preset& preset, const ImageShape& shape) {
   GrayImage image;
   try {
     image = readPngGray(shape.path);
-  } catch (const std::exception& e) {
+  } catch (const std::runtime_error& e) {  // not bad_alloc: running out of memory is not a bad file
     throw InputError(preset.locate("shape.image.path"), "shape.image.path", e.what(),
                      "give a readable black-and-white PNG; paths are relative to the preset");
   }
@@ -27,7 +27,7 @@ TriangleMesh readBlockout(const Preset& preset, const MeshShape& shape) {
   TriangleMesh mesh;
   try {
     mesh = readTriangleMesh(shape.path);
-  } catch (const std::exception& e) {
+  } catch (const std::runtime_error& e) {  // not bad_alloc: running out of memory is not a bad file
     throw InputError(preset.locate("shape.mesh.path"), "shape.mesh.path", e.what());
   }
   const std::vector<OpenEdge> open = findOpenEdges(mesh);

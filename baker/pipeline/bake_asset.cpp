@@ -1,6 +1,13 @@
 #include "pipeline/bake_asset.h"
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+
 #include <chrono>
+#include <system_error>
 
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
@@ -20,6 +27,75 @@
 
 namespace rockbake {
 namespace {
+
+// A bake writes into a hidden folder beside its asset folder, OUT/.<name>.baking-<pid>, and renames it into
+// place only when everything, manifest.json last, is written: a bake that fails or is interrupted leaves
+// the previous complete asset, or nothing (not even OUT, when the bake created it).
+class StagingFolder {
+ public:
+  explicit StagingFolder(const std::filesystem::path& asset_dir)
+      : final_(asset_dir),
+        staging_(hidden(asset_dir, "baking")),
+        created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())) {
+    removeStale(asset_dir);
+    std::filesystem::remove_all(staging_);
+    std::filesystem::create_directories(staging_);
+  }
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+  ~StagingFolder() {
+    if (committed_) return;
+    std::error_code ignored;
+    std::filesystem::remove_all(staging_, ignored);
+    if (created_out_) std::filesystem::remove(final_.parent_path(), ignored);  // only if still empty
+  }
+
+  const std::filesystem::path& path() const { return staging_; }
+
+  // The previous asset (if any) is moved aside, the new one renamed into place, then the old one removed.
+  void commit() {
+    const std::filesystem::path old = hidden(final_, "replaced");
+    std::error_code ignored;
+    std::filesystem::remove_all(old, ignored);
+    if (std::filesystem::exists(std::filesystem::symlink_status(final_))) std::filesystem::rename(final_, old);
+    std::filesystem::rename(staging_, final_);
+    committed_ = true;
+    std::filesystem::remove_all(old, ignored);
+  }
+
+ private:
+  // What a killed bake of this asset left (.<name>.baking-<pid>, .<name>.replaced-<pid> of a process that is
+  // gone) is removed; a bake of it still running elsewhere is left alone.
+  static void removeStale(const std::filesystem::path& asset_dir) {
+    std::error_code ec;
+    const std::filesystem::path parent = asset_dir.parent_path().empty() ? "." : asset_dir.parent_path();
+    const std::string prefix = "." + asset_dir.filename().string() + ".";
+    for (const auto& entry : std::filesystem::directory_iterator(parent, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(prefix, 0) != 0) continue;
+      const std::size_t dash = name.rfind('-');
+      const std::string kind = name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size());
+      if (dash == std::string::npos || (kind != "baking" && kind != "replaced")) continue;
+      const long pid = std::strtol(name.c_str() + dash + 1, nullptr, 10);
+      if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(entry.path(), ec);
+    }
+  }
+
+  static std::filesystem::path hidden(const std::filesystem::path& dir, const char* what) {
+    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) about "." + std::string.
+    std::string name = ".";
+    name += dir.filename().string();
+    name += '.';
+    name += what;
+    name += '-';
+    name += std::to_string(::getpid());
+    return dir.parent_path() / name;
+  }
+
+  std::filesystem::path final_, staging_;
+  bool created_out_ = false;
+  bool committed_ = false;
+};
 
 nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
@@ -49,7 +125,9 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   nlohmann::ordered_json stages;
   stages["load"] = options.load_seconds;
   Stopwatch clock;
-  const AssetFolderSnapshot before = beginAssetFolder(summary.asset_dir);
+  StagingFolder staging(summary.asset_dir);
+  const std::filesystem::path& dir = staging.path();
+  const AssetFolderSnapshot before = beginAssetFolder(dir);
   const auto check_cancel = [&] {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
   };
@@ -84,13 +162,15 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   stages["simulate_rockfall"] = rockfall;
   summary.cycles = int(weathered.cycles.size());
   summary.final_rock = weathered.rock.count(Material::Rock);
+  // No later stage reads integrity: its memory goes before the VDB and meshes.
+  weathered.rock.integrity = RowSpans();
 
   check_cancel();
   if (!options.mesh) {
-    writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb");
+    writeRockVdb(weathered.rock, dir / "rock.vdb");
     stages["write_vdb"] = clock.lap();
   } else {
-    const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, summary.asset_dir);
+    const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, dir);
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
     stages["mesh_attributes"] = meshes.attributes_seconds;
@@ -99,14 +179,14 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
     clock.lap();
     // rock_sdf in the VDB is the field the meshes were made from.
     if (exportsFormat(preset, "vdb")) {
-      writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb", meshes.rock_sdf.get());
+      writeRockVdb(weathered.rock, dir / "rock.vdb", meshes.rock_sdf.get());
       stages["write_vdb"] = clock.lap();
     }
 
     if (options.render) {
       check_cancel();
       RenderRequest request;
-      request.asset_dir = summary.asset_dir;
+      request.asset_dir = dir;
       request.params = preset.render;
       request.preset_name = preset.name;
       request.seed = preset.seed;
@@ -115,7 +195,8 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
       request.cancel = options.cancel;
       const RenderOutputs rendered = renderAsset(meshes.meshes, request);
       stages["render"] = rendered.seconds_total;
-      spdlog::info("{}: rendered {} in {:.1f} s", preset.name, rendered.render_png.string(), rendered.seconds_total);
+      spdlog::info("{}: rendered {} in {:.1f} s", preset.name,
+                   (summary.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
       clock.lap();
     }
 
@@ -140,10 +221,11 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   stats["stages"] = stages;
   stats["preset"] = presetToJson(preset);
   check_cancel();
-  writeFileAtomically(summary.asset_dir / "stats.json", stats.dump(2) + "\n");
+  writeFileAtomically(dir / "stats.json", stats.dump(2) + "\n");
   const ManifestStats manifest_stats{summary.cycles, summary.initial_rock, summary.final_rock,
                                      weathered.rock.count(Material::Colluvium)};
   writeManifest(before, preset, options.manifest, options.mesh, options.render, manifest_stats, {{"stages", stages}});
+  staging.commit();
   return summary;
 }
 

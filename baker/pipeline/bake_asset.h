@@ -4,8 +4,10 @@
 //   field) ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json ─▶
 //   manifest.json (last), all in OUT/<name>/; with --no-mesh, rock.vdb
 //   (occupancy rock_sdf), stats.json and manifest.json
-// Each stage is a function of the previous stage's value; every file is
-// written atomically, so a failed bake never leaves a file that looks complete.
+// Each stage is a function of the previous stage's value. The bake writes into
+// a hidden folder beside OUT/<name> (OUT/.<name>.baking-<pid>) and renames it
+// into place at the end, replacing the previous asset: a bake that fails or is
+// interrupted leaves the previous complete asset folder, or none.
 #pragma once
 
 #include <atomic>

@@ -14,6 +14,7 @@
 #include "pipeline/bake_asset.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
+#include "sim/grid_layout.h"
 
 namespace rockbake {
 namespace {
@@ -70,8 +71,12 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
     inputs.library_sha256 = library.sha256;
 
     if (options.observer.started) options.observer.started(job.name);
+    std::string out_of_memory = "out of memory while reading the job's inputs";
     try {
       Preset preset = loadPreset(entry.preset_file, overrides);
+      out_of_memory =
+          fmt::format("out of memory: lower grid.resolution ({} needs about {} MiB for the simulation alone)",
+                      preset.grid.resolution, estimateSimulationBytes(computeGridLayout(preset)) >> 20);
       preset.name = job.name;  // the asset is the job: OUT/<job>/, and the name in its headers
       const double load_seconds = seconds();
       if (isCompleteAsset(asset_dir, bakeInputHash(preset, options.mesh, options.render, base_dir))) {
@@ -97,7 +102,8 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
         outcome.status = JobStatus::NotRun;  // e.g. POV-Ray stopped by the same Ctrl-C
       } else {
         outcome.status = JobStatus::Failed;
-        outcome.message = e.what();
+        const bool no_memory = dynamic_cast<const std::bad_alloc*>(&e) || dynamic_cast<const std::length_error*>(&e);
+        outcome.message = no_memory ? out_of_memory : escapeControlBytes(e.what());
         try {
           beginAssetFolder(asset_dir);  // drop an earlier bake's manifest: this job's inputs no longer match it
           writeFailureRecord(asset_dir, job.name, inputs, outcome.message, seconds());

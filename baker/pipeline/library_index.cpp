@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 
+#include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -21,12 +22,13 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-std::optional<json> readJson(const fs::path& file) {
+std::optional<json> readJson(const fs::path& file, std::string* problem = nullptr) {
   std::ifstream in(file);
   if (!in) return std::nullopt;
   try {
     return json::parse(in);
-  } catch (const json::exception&) {
+  } catch (const json::exception& e) {
+    if (problem) *problem = e.what();
     return std::nullopt;
   }
 }
@@ -77,36 +79,66 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
     ordered_json asset;
     asset["name"] = name;
     json library;
-    if (const auto manifest = readJson(dir / kManifestFile); manifest && manifest->contains("inputs")) {
-      const json& inputs = (*manifest)["inputs"];
-      const auto run = run_status.find(name);
-      const std::string status = run != run_status.end() ? run->second : "ok";
-      (status == "skipped-resumed" ? counts.skipped_resumed : counts.ok) += 1;
-      bool rendered = false, described = false;
-      for (const auto& output : manifest->value("outputs", json::array())) {
-        rendered = rendered || output.value("path", "") == "render.png";
-        described = described || output.value("path", "") == kAssetFile;
-      }
-      asset["status"] = status;
-      asset["job"] = inputs.value("job", json(nullptr));
-      asset["input_hash"] = inputs.value("input_hash", "");
-      asset["manifest"] = name + "/" + kManifestFile;
-      asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
-      asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
-      library = inputs.value("library", json(nullptr));
-      sheet.push_back({name, rendered ? dir / "render.png" : fs::path(), "no render"});
-    } else if (const auto failure = readJson(dir / kFailureFile); failure && failure->contains("message")) {
-      counts.failed += 1;
-      asset["status"] = "failed";
-      asset["message"] = (*failure)["message"];
-      asset["job"] = failure->value("inputs", json::object()).value("job", json(nullptr));
-      asset["failure"] = name + "/" + kFailureFile;
-      library = failure->value("inputs", json::object()).value("library", json(nullptr));
-      sheet.push_back({name, fs::path(), "failed"});
-    } else {
-      continue;  // not an asset folder, or a bake that has not finished
+    std::string manifest_problem, failure_problem;
+    const auto manifest = readJson(dir / kManifestFile, &manifest_problem);
+    const auto failure = manifest ? std::nullopt : readJson(dir / kFailureFile, &failure_problem);
+    const bool manifest_ok = manifest && manifest->is_object() && manifest->contains("inputs") &&
+                             (*manifest)["inputs"].is_object() && manifest->value("outputs", json::array()).is_array();
+    const bool failure_ok = failure && failure->is_object() && failure->contains("message");
+    if (!manifest_ok && !failure_ok && (fs::exists(dir / kManifestFile) || fs::exists(dir / kFailureFile))) {
+      // There, but unreadable: cut off or garbled. Never left out silently.
+      const char* file = fs::exists(dir / kManifestFile) ? kManifestFile : kFailureFile;
+      const std::string& why = fs::exists(dir / kManifestFile) ? manifest_problem : failure_problem;
+      const std::string message =
+          std::string(file) + " cannot be read" + (why.empty() ? " (not what a bake writes)" : ": " + why);
+      spdlog::warn("{}: damaged: {}; bake it again", name, message);
+      counts.damaged += 1;
+      asset["status"] = "damaged";
+      asset["message"] = message;
+      sheet.push_back({name, fs::path(), "damaged"});
+      assets.push_back(asset);
+      continue;
     }
-    if (library.is_object()) libraries.emplace(library.value("file", ""), library.value("sha256", ""));
+    // A manifest or failure record of the wrong shape (a value of another type) is damaged too.
+    try {
+      if (manifest_ok) {
+        const json& inputs = (*manifest)["inputs"];
+        const auto run = run_status.find(name);
+        const std::string status = run != run_status.end() ? run->second : "ok";
+        (status == "skipped-resumed" ? counts.skipped_resumed : counts.ok) += 1;
+        bool rendered = false, described = false;
+        for (const auto& output : manifest->value("outputs", json::array())) {
+          rendered = rendered || (output.is_object() && output.value("path", "") == "render.png");
+          described = described || (output.is_object() && output.value("path", "") == kAssetFile);
+        }
+        asset["status"] = status;
+        asset["job"] = inputs.value("job", json(nullptr));
+        asset["input_hash"] = inputs.value("input_hash", "");
+        asset["manifest"] = name + "/" + kManifestFile;
+        asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
+        asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
+        library = inputs.value("library", json(nullptr));
+        sheet.push_back({name, rendered ? dir / "render.png" : fs::path(), "no render"});
+      } else if (failure_ok) {
+        counts.failed += 1;
+        asset["status"] = "failed";
+        asset["message"] = (*failure)["message"];
+        asset["job"] = failure->value("inputs", json::object()).value("job", json(nullptr));
+        asset["failure"] = name + "/" + kFailureFile;
+        library = failure->value("inputs", json::object()).value("library", json(nullptr));
+        sheet.push_back({name, fs::path(), "failed"});
+      } else {
+        continue;  // not an asset folder, or a bake that has not finished
+      }
+    } catch (const json::exception& e) {
+      spdlog::warn("{}: damaged: {}; bake it again", name, e.what());
+      counts.damaged += 1;
+      asset = {{"name", name}, {"status", "damaged"}, {"message", e.what()}};
+      library = nullptr;
+      sheet.push_back({name, fs::path(), "damaged"});
+    }
+    if (library.is_object() && library.value("file", json()).is_string() && library.value("sha256", json()).is_string())
+      libraries.emplace(library.value("file", ""), library.value("sha256", ""));
     assets.push_back(asset);
   }
 
@@ -126,7 +158,10 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
   index["libraries"] = ordered_json::array();
   for (const auto& [file, sha] : libraries) index["libraries"].push_back({{"file", file}, {"sha256", sha}});
   index["assets"] = assets;
-  index["counts"] = {{"ok", counts.ok}, {"skipped-resumed", counts.skipped_resumed}, {"failed", counts.failed}};
+  index["counts"] = {{"ok", counts.ok},
+                     {"skipped-resumed", counts.skipped_resumed},
+                     {"failed", counts.failed},
+                     {"damaged", counts.damaged}};
   index["contact_sheet"] = with_sheet ? json(kContactSheetFile) : json(nullptr);
   index["timings"] = timings;
   index["host"] = hostName();

@@ -10,14 +10,16 @@
 //       "job": {name, preset, wedge, wedge_set, set, seed, resolution},
 //       "input_hash", "manifest": "<name>/manifest.json", "render": "<name>/render.png" | null,
 //       "asset": "<name>/asset.json" | null}
-//      {"name", "status": "failed", "message", "job", "failure": "<name>/failure.json"}],
-//    "counts": {"ok", "skipped-resumed", "failed"},
+//      {"name", "status": "failed", "message", "job", "failure": "<name>/failure.json"}
+//      {"name", "status": "damaged", "message"}],     // manifest.json / failure.json there but unreadable
+//    "counts": {"ok", "skipped-resumed", "failed", "damaged"},
 //    "contact_sheet": "contact_sheet.png" | null,
 //    "timings": {...}, "host"}
 //
 // An asset folder is one holding manifest.json (a finished bake) or
 // failure.json (a library job that failed); folders with neither (a bake
-// interrupted or still running) are left out. "skipped-resumed" is what the
+// interrupted or still running) are left out. A folder whose manifest.json or
+// failure.json is cut off or garbled is listed as "damaged", with a warning. "skipped-resumed" is what the
 // run that writes the index did with an asset it found complete; otherwise a
 // finished asset is "ok". "timings" and "host" are the only keys that vary
 // between runs over the same folders.
@@ -38,6 +40,9 @@ struct IndexCounts {
   int ok = 0;
   int skipped_resumed = 0;
   int failed = 0;
+  // Folders whose manifest.json or failure.json is there but cannot be read (cut off, garbled): listed
+  // with status "damaged" and a warning; bake them again.
+  int damaged = 0;
 };
 
 // Writes OUT/index.json and OUT/contact_sheet.png (when there is at least one

@@ -1,7 +1,9 @@
 #include "pipeline/read_inputs.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 
 #include <fmt/format.h>
@@ -14,11 +16,15 @@ namespace rockbake {
 void checkGridFitsInMemory(const Preset& preset) {
   const GridLayout layout = computeGridLayout(preset);
   const std::uint64_t needed = estimateSimulationBytes(layout);
-  const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+  std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
+  // A limit on this process (ulimit -v, a batch system's) counts as the machine's memory.
+  struct rlimit limit {};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    physical = std::min<std::uint64_t>(physical, limit.rlim_cur);
   if (needed > physical / 10 * 6)
     throw InputError(preset.locate("grid.resolution"), "grid.resolution",
-                     fmt::format("a {}×{}×{} grid needs about {} MiB; this machine has {} MiB", layout.nx, layout.ny,
-                                 layout.nz, needed >> 20, physical >> 20),
+                     fmt::format("a {}×{}×{} grid needs about {} MiB; this machine (or process) has {} MiB", layout.nx,
+                                 layout.ny, layout.nz, needed >> 20, physical >> 20),
                      "lower grid.resolution (or --resolution)");
 }
 

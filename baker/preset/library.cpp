@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include <yaml-cpp/yaml.h>
 
@@ -20,6 +21,8 @@ namespace rockbake {
 namespace {
 
 constexpr std::uint64_t kMaxSeedCount = 100000;
+// The most jobs one library may hold: beyond it a typo (a count of 100000 on every entry) would run away.
+constexpr std::uint64_t kMaxJobs = 100000;
 
 std::vector<std::uint64_t> readSeeds(const Field& seeds) {
   std::vector<std::uint64_t> out;
@@ -65,8 +68,8 @@ LibraryWedge readWedge(const Field& w, const std::string& file_label) {
   w.has("set");  // known before 'name' is required, so it is not taken for a misspelling
   const Field name = w.require("name", "a wedge needs a 'name' (it becomes part of the job name)");
   wedge.name = name.string();
-  if (!isAssetName(wedge.name))
-    name.fail("'" + wedge.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes part of the asset folder's name");
+  if (const auto problem = assetNameProblem(wedge.name))
+    name.fail(*problem, "it becomes part of the asset folder's name");
   if (!w.has("set") || w.at("set").yaml().IsNull()) return wedge;  // a wedge without overrides: the preset as is
   const Field set = w.at("set");
   for (const Field& key : set.dataKeys()) {
@@ -111,8 +114,7 @@ LibraryEntry readEntry(const Field& e, const std::filesystem::path& base_dir, co
   if (e.has("name")) {
     const Field name = e.at("name");
     entry.name = name.string();
-    if (!isAssetName(entry.name))
-      name.fail("'" + entry.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes the asset folders' names");
+    if (const auto problem = assetNameProblem(entry.name)) name.fail(*problem, "it becomes the asset folders' names");
   } else {
     entry.name = stemName(entry.preset_file);
     if (!isAssetName(entry.name)) preset.fail("cannot make a job name from this file name", "give the entry a 'name'");
@@ -145,20 +147,7 @@ std::string jobName(const LibraryEntry& entry, const LibraryWedge* wedge, const 
 
 Library parseLibrary(const std::string& yaml_text, const std::filesystem::path& file) {
   const std::string label = file.string();
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError({label, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1}, "",
-                     "malformed YAML: " + e.msg, "check the indentation and brackets there");
-  }
-  if (documents.size() > 1) {
-    const YAML::Mark mark = documents[1].Mark();
-    throw InputError({label, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1}, "",
-                     "a library holds one YAML document; a second one starts here",
-                     "remove the '---' and what follows");
-  }
-  const YAML::Node root_yaml = documents.empty() ? YAML::Node() : documents.front();
+  const YAML::Node root_yaml = loadYamlDocument(yaml_text, label, "a library");
   Source source;
   source.origins.push_back({"", label, std::filesystem::absolute(file).parent_path()});
   ReadLog reads;
@@ -172,28 +161,35 @@ Library parseLibrary(const std::string& yaml_text, const std::filesystem::path& 
   library.file = file;
   library.sha256 = sha256Hex(yaml_text);
   const std::filesystem::path base_dir = file.parent_path();
-  for (std::size_t i = 0; i < root.size(); ++i) library.entries.push_back(readEntry(root.item(i), base_dir, label));
+  std::uint64_t job_count = 0;
+  for (std::size_t i = 0; i < root.size(); ++i) {
+    LibraryEntry entry = readEntry(root.item(i), base_dir, label);
+    // Counted before anything is expanded.
+    job_count += std::max<std::uint64_t>(1, entry.seeds.size()) * std::max<std::uint64_t>(1, entry.wedges.size());
+    if (job_count > kMaxJobs)
+      root.item(i).fail("the library holds more than " + std::to_string(kMaxJobs) + " jobs with this entry",
+                        "split it into several library files");
+    library.entries.push_back(std::move(entry));
+  }
   if (const std::vector<InputError> unknown = unreadKeyProblems(source); !unknown.empty()) throw unknown.front();
 
   // Two jobs with one name would bake into one folder: refuse before anything runs.
-  std::vector<std::pair<std::string, std::size_t>> names;  // job name, entry
+  std::unordered_map<std::string, std::size_t> names;  // job name → entry
+  names.reserve(job_count);
   for (std::size_t i = 0; i < library.entries.size(); ++i)
     for (const auto& job : expandLibrary(Library{{}, {}, {library.entries[i]}})) {
-      const auto clash = std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == job.name; });
-      if (clash != names.end())
+      const auto [clash, added] = names.emplace(job.name, i);
+      if (!added)
         root.item(i).fail("job '" + job.name + "' is also made by entry " + std::to_string(clash->second),
                           "every job needs its own asset folder: give one of the entries another 'name'");
-      names.emplace_back(job.name, i);
     }
   return library;
 }
 
 Library loadLibrary(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string()}, "", "cannot read the library file", "check the path");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseLibrary(text.str(), file);
+  const std::optional<std::string> text = readYamlFile(file.string(), "a library file");
+  if (!text) throw InputError({file.string()}, "", "cannot read the library file", "check the path");
+  return parseLibrary(*text, file);
 }
 
 std::vector<LibraryJob> expandLibrary(const Library& library) {

@@ -19,6 +19,7 @@
 #include "core/did_you_mean.h"
 #include "core/error.h"
 #include "preset/yaml_field.h"
+#include "preset/render_templates.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {
@@ -112,7 +113,7 @@ BubbleSpec readBubble(const Field& f) {
   if (kind == "sphere") {
     k.expectMap();
     bubble.kind = BubbleSpec::Kind::Sphere;
-    bubble.extents = {k.at("radius").positive(), 0, 0};
+    bubble.extents = {k.at("radius").length(), 0, 0};
   } else if (kind == "ellipsoid") {
     k.expectMap();
     bubble.kind = BubbleSpec::Kind::Ellipsoid;
@@ -202,7 +203,7 @@ DurabilityGraph readGraph(const Field& f) {
       s.expectMap();
       NoiseParams noise;
       if (s.has("amplitude")) noise.amplitude = s.at("amplitude").numberIn(0.0, 1e6);
-      if (s.has("period")) noise.period = s.at("period").positive();
+      if (s.has("period")) noise.period = s.at("period").length();
       if (s.has("octaves")) noise.octaves = int(s.at("octaves").integer(1, 8));
       graph.noise.push_back(noise);
     }
@@ -219,13 +220,13 @@ void readShape(const Field& f, Preset& p) {
     p.shape.kind = BoxShape{k.at("size").positiveVec3()};
   } else if (kind == "cylinder") {
     k.expectMap();
-    p.shape.kind = CylinderShape{k.at("radius").positive(), k.at("height").positive()};
+    p.shape.kind = CylinderShape{k.at("radius").length(), k.at("height").length()};
   } else if (kind == "sphere") {
     k.expectMap();
-    p.shape.kind = SphereShape{k.at("radius").positive()};
+    p.shape.kind = SphereShape{k.at("radius").length()};
   } else if (kind == "inside_corner") {
     k.expectMap();
-    InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").positive()};
+    InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").length()};
     if (corner.wall >= std::min(corner.size[0], corner.size[1]))
       k.at("wall").fail("must be thinner than the corner's footprint (" + formatNumber(corner.size[0]) + " × " +
                         formatNumber(corner.size[1]) + ")");
@@ -241,7 +242,7 @@ void readShape(const Field& f, Preset& p) {
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
                      : ImageMode::Extrude;
-    image.height = k.at("height").positive();
+    image.height = k.at("height").length();
     p.shape.kind = image;
   } else {
     k.expectMap();
@@ -251,7 +252,7 @@ void readShape(const Field& f, Preset& p) {
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
     if (!std::filesystem::is_regular_file(mesh.path))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
-    if (k.has("scale")) mesh.scale = k.at("scale").positive();
+    if (k.has("scale")) mesh.scale = k.at("scale").numberIn(0.0, kMaxWorldLength, true);
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
@@ -295,8 +296,7 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
 
   validatePart(source, [&] {
     p.name = root.require("name", "missing 'name' (the asset's name, [a-z0-9_-]+)").string();
-    if (!isAssetName(p.name))
-      root.at("name").fail("'" + p.name + "' may only use a-z, 0-9, '_' and '-'", "it names the output folder");
+    if (const auto problem = assetNameProblem(p.name)) root.at("name").fail(*problem, "it names the output folder");
   });
   validatePart(source, [&] {
     if (root.has("seed")) p.seed = root.at("seed").unsigned64();
@@ -341,22 +341,24 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     if (!root.has("bubbles")) return;
     const Field bands = root.at("bubbles");
     if (bands.size() == 0) bands.fail("needs at least one band");
-    for (std::size_t i = 0; i < bands.size(); ++i) {
-      const Field b = bands.item(i);
-      b.expectMap();
-      BubbleBand band;
-      if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
-      band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
-      if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
-        b.at("up_to").fail("bands go bottom to top: up_to must increase");
-      if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
-      band.bubble = readBubble(b.at("bubble"));
-      checkBubbleSize(band.bubble, b.at("bubble"), h);
-      if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
-      if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
-      p.bubbles.push_back(band);
-    }
-    if (p.bubbles.back().up_to != 1.0)
+    // Band by band, so that linting lists the problems of every band.
+    for (std::size_t i = 0; i < bands.size(); ++i)
+      validatePart(source, [&] {
+        const Field b = bands.item(i);
+        b.expectMap();
+        BubbleBand band;
+        if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
+        band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
+        if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
+          b.at("up_to").fail("bands go bottom to top: up_to must increase");
+        if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
+        band.bubble = readBubble(b.at("bubble"));
+        checkBubbleSize(band.bubble, b.at("bubble"), h);
+        if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
+        if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
+        p.bubbles.push_back(band);
+      });
+    if (p.bubbles.size() == bands.size() && p.bubbles.back().up_to != 1.0)
       bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
   });
   if (!root.has("bubbles")) {
@@ -418,8 +420,18 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     if (root.has("time") == root.has("cycles"))
       root.fail(root.has("time") ? "give either 'time' or 'cycles', not both" : "missing 'time' (or 'cycles')",
                 "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution");
-    if (root.has("time")) p.stop.time = root.at("time").positive();
-    if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, 1000000));
+    if (root.has("time")) {
+      // `time` runs ceil(time / h) cycles: the same limit as `cycles`.
+      p.stop.time = root.at("time").positive();
+      const double cycles = std::ceil(*p.stop.time / h - 1e-9);
+      if (cycles > double(kMaxCycles))
+        root.at("time").fail("time " + formatNumber(*p.stop.time) + " is " +
+                                 (cycles < 1e15 ? std::to_string((long long)cycles) : formatNumber(cycles)) +
+                                 " cycles at this resolution (a cycle is " + formatNumber(h) +
+                                 " units of time); at most " + std::to_string(kMaxCycles) + " cycles are allowed",
+                             "lower time (at most " + formatNumber(double(kMaxCycles) * h) + " here)");
+    }
+    if (root.has("cycles")) p.stop.cycles = int(root.at("cycles").integer(1, kMaxCycles));
   });
   validatePart(source, [&] {
     if (!root.has("until")) return;
@@ -518,7 +530,13 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     if (!root.has("render")) return;
     const Field r = root.at("render");
     r.expectMap();
-    if (r.has("template")) p.render.template_name = r.at("template").string();
+    if (r.has("template")) {
+      p.render.template_name = r.at("template").string();
+      if (const auto problem = renderTemplateProblem(p.render.template_name, renderTemplatesDir()))
+        r.at("template")
+            .fail(*problem, "a template is named by its file in " + renderTemplatesDir().string() +
+                                " without .pov, never by a path");
+    }
     if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
     if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
     if (r.has("quality")) p.render.quality = int(r.at("quality").integer(0, 11));
@@ -545,29 +563,12 @@ SourceLocation locationOf(const std::string& file, const YAML::Mark& mark) {
 }
 
 std::optional<std::string> readText(const std::filesystem::path& file) {
-  if (!std::filesystem::is_regular_file(file)) return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return readYamlFile(file.string(), "a preset");
 }
 
 // The one YAML document of a preset file (`file` names it in messages).
 YAML::Node readDocument(const std::string& yaml_text, const std::string& file) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(locationOf(file, e.mark), "", "malformed YAML: " + e.msg,
-                     "check the indentation and brackets there");
-  }
-  // A second document would be ignored without a word.
-  if (documents.size() > 1)
-    throw InputError(locationOf(file, documents[1].Mark()), "",
-                     "a preset holds one YAML document; a second one starts here",
-                     "remove the '---' and what follows, or make it a preset file of its own");
-  return documents.empty() ? YAML::Node() : documents.front();
+  return loadYamlDocument(yaml_text, file, "a preset");
 }
 
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {

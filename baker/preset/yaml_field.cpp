@@ -16,7 +16,10 @@ std::vector<InputError> unreadKeyProblems(const Source& source) {
     return path.empty() ? key : path + "." + key;
   };
   for (const auto& map : reads.maps) {
-    if (stopped(map.path) || !map.node.IsMap()) continue;
+    if (!map.node.IsMap()) continue;
+    // Where reading stopped, keys after the problem were never asked for: report only those that
+    // look like misspellings of a key that was (a misspelt required key is what stops it, often).
+    const bool partial = stopped(map.path);
     // Every key asked for here, present or not, in the order the reads asked: what the map may hold.
     std::vector<std::string> valid;
     const std::string prefix = map.path.empty() ? "" : map.path + ".";
@@ -29,6 +32,7 @@ std::vector<InputError> unreadKeyProblems(const Source& source) {
       if (reads.asked.count(join(map.path, key))) continue;
       const Field bad(entry.first, join(map.path, key), source, map.mark);
       const std::optional<std::string> best = closestName(key, valid);
+      if (partial && !best) continue;
       problems.emplace_back(
           bad.location(), bad.path(),
           best ? "unknown key '" + key + "'; did you mean '" + *best + "'?" : "unknown key '" + key + "'",

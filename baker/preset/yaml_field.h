@@ -82,6 +82,12 @@ struct Source {
   const std::filesystem::path& folder() const { return origins.front().folder; }
 };
 
+// The largest length (and coordinate) a preset may give, in world units. Beyond it products of lengths
+// overflow long before a grid could resolve them.
+constexpr double kMaxWorldLength = 1e6;
+// The most cycles a bake may run, whether given as `cycles` or as `time`.
+constexpr long long kMaxCycles = 1000000;
+
 inline std::string formatNumber(double v) {
   std::ostringstream out;
   out << v;
@@ -118,7 +124,9 @@ class Field {
 
   Field at(const std::string& key) const {
     ask(key);
-    Field field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
+    // A key the map lacks reads as nothing (null), never as yaml-cpp's invalid node.
+    Field field(node_.IsMap() && node_[key].IsDefined() ? node_[key] : YAML::Node(), join(key), *source_,
+                markOrParent());
     if (source_->locations && field.defined()) source_->locations->emplace(field.path(), field.location());
     return field;
   }
@@ -228,6 +236,13 @@ class Field {
     if (v <= 0) fail("must be greater than 0, found " + formatNumber(v));
     return v;
   }
+  // A length in world units: > 0 and at most kMaxWorldLength.
+  double length() const {
+    const double v = positive();
+    if (v > kMaxWorldLength)
+      fail("must be at most " + formatNumber(kMaxWorldLength) + " world units, found " + formatNumber(v));
+    return v;
+  }
   long long integer(long long lo, long long hi) const {
     if (!node_.IsScalar()) fail("expected a whole number, found " + describe(node_));
     long long v = 0;
@@ -263,13 +278,16 @@ class Field {
       fail("'" + v + "' is not one of: " + joinNames(options));
     return v;
   }
+  // Three lengths (sizes, radii, half extents).
   Vec3d positiveVec3() const {
     if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).positive(), item(1).positive(), item(2).positive()};
+    return {item(0).length(), item(1).length(), item(2).length()};
   }
+  // A position: each coordinate within ±kMaxWorldLength.
   Vec3d vec3() const {
     if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).number(), item(1).number(), item(2).number()};
+    return {item(0).numberIn(-kMaxWorldLength, kMaxWorldLength), item(1).numberIn(-kMaxWorldLength, kMaxWorldLength),
+            item(2).numberIn(-kMaxWorldLength, kMaxWorldLength)};
   }
 
   // Where this value was written: file:line:column, or the command-line flag that set it.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/png_image.h"
+#include "preset/render_templates.h"
 
 #ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
 #define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
@@ -17,7 +18,7 @@
 namespace rockbake {
 
 std::filesystem::path defaultRenderTemplatesDir() {
-  return ROCKBAKE_RENDER_TEMPLATES_DIR;
+  return renderTemplatesDir();
 }
 
 void exrToPng(const std::filesystem::path& exr, const std::filesystem::path& png_path,

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "preset/render_templates.h"
 
 namespace rockbake {
 namespace {
@@ -241,6 +242,9 @@ std::map<std::string, std::string> scenePlaceholders(const AssetFrame& meshes, c
 }
 
 std::filesystem::path findTemplate(const std::filesystem::path& dir, const std::string& name) {
+  // A name, never a path: nothing outside the templates folder is read.
+  if (renderTemplateProblem(name, dir))
+    throw std::runtime_error("render template '" + name + "': " + *renderTemplateProblem(name, dir));
   const auto file = dir / (name + ".pov");
   if (std::filesystem::is_regular_file(file)) return file;
   std::vector<std::string> names;

@@ -52,7 +52,7 @@ std::size_t ColluviumModel::deposit(VoxelRock& rock, const std::vector<Cell>& de
       if (landing < 0) break;  // the unit waits in the accumulator
       acc -= kUnit;
       rock.material[std::size_t(landing)] = Material::Colluvium;
-      rock.durability[std::size_t(landing)] = 0.f;
+      rock.durability.set(std::size_t(landing), 0.f);
       changed.push_back(Cell(landing));
       unstable.push_back(Cell(landing));
       ++created;

@@ -1,8 +1,20 @@
 #include "sim/curvature.h"
 
+#include <atomic>
 #include <bit>
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <string>
+#include <string_view>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+#include <spdlog/spdlog.h>
 
 namespace rockbake {
 
@@ -41,58 +53,177 @@ bool AirField::isAir(int x, int y, int z) const {
 }
 
 namespace {
-// An unaligned 8-byte load starting at a row's first byte holds at least 57
-// of its bits after the sub-byte shift.
-constexpr int kMaxShortRow = 57;
+
 static_assert(std::endian::native == std::endian::little, "the row loads read words as little-endian bytes");
+
+inline std::uint64_t loadWord(const unsigned char* p) {
+  std::uint64_t w;
+  std::memcpy(&w, p, sizeof w);
+  return w;
+}
+
+// The portable run: one load per piece, each voxel's window shifted out of it.
+void countRunPortable(const AirField::BoundBubble& b, const unsigned char* base, int phase, const std::uint8_t* dx,
+                      int n, int* out) {
+  const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.pieces;
+  const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.pieces;
+  int acc[AirField::kRunWidth] = {};
+  for (std::size_t i = 0; i < b.pieces; ++i) {
+    const std::uint64_t w = loadWord(base + offset[i]);
+    for (int k = 0; k < n; ++k) acc[k] += std::popcount((w >> dx[k]) & mask[i]);
+  }
+  for (int k = 0; k < n; ++k) out[k] = acc[k];
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define ROCKBAKE_HAVE_AVX512_PATH 1
+// Eight lanes, one per voxel of the run: the piece's word is broadcast,
+// shifted by each voxel's dx, masked and counted with VPOPCNTQ.
+__attribute__((target("avx512f,avx512vpopcntdq"))) void countRunAvx512(const AirField::BoundBubble& b,
+                                                                       const unsigned char* base, int phase,
+                                                                       const std::uint8_t* dx, int n, int* out) {
+  const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.pieces;
+  const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.pieces;
+  std::uint64_t lane_dx[AirField::kRunWidth] = {};
+  for (int k = 0; k < n; ++k) lane_dx[k] = dx[k];
+  const __m512i shift = _mm512_loadu_si512(lane_dx);
+  // maskz forms (all lanes on): the plain ones trip GCC 12's -Wmaybe-uninitialized.
+  const __mmask8 all = 0xFF;
+  __m512i acc0 = _mm512_setzero_si512(), acc1 = _mm512_setzero_si512();
+  std::size_t i = 0;
+  for (; i + 1 < b.pieces; i += 2) {
+    const __m512i w0 = _mm512_set1_epi64(std::int64_t(loadWord(base + offset[i])));
+    const __m512i w1 = _mm512_set1_epi64(std::int64_t(loadWord(base + offset[i + 1])));
+    const __m512i m0 = _mm512_set1_epi64(std::int64_t(mask[i]));
+    const __m512i m1 = _mm512_set1_epi64(std::int64_t(mask[i + 1]));
+    acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(_mm512_maskz_srlv_epi64(all, w0, shift), m0)));
+    acc1 = _mm512_add_epi64(acc1, _mm512_popcnt_epi64(_mm512_and_si512(_mm512_maskz_srlv_epi64(all, w1, shift), m1)));
+  }
+  if (i < b.pieces) {
+    const __m512i w0 = _mm512_set1_epi64(std::int64_t(loadWord(base + offset[i])));
+    const __m512i m0 = _mm512_set1_epi64(std::int64_t(mask[i]));
+    acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(_mm512_maskz_srlv_epi64(all, w0, shift), m0)));
+  }
+  alignas(64) std::int64_t counts[AirField::kRunWidth];
+  _mm512_store_si512(counts, _mm512_add_epi64(acc0, acc1));
+  for (int k = 0; k < n; ++k) out[k] = int(counts[k]);
+}
+#endif
+
+bool cpuHasAvx512Path() {
+#ifdef ROCKBAKE_HAVE_AVX512_PATH
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vpopcntdq");
+#else
+  return false;
+#endif
+}
+
+AlphaPath initialAlphaPath() {
+  const AlphaPath best = cpuHasAvx512Path() ? AlphaPath::Avx512 : AlphaPath::Portable;
+  const char* forced = std::getenv("ROCKBAKE_ALPHA_PATH");
+  if (!forced || !*forced || std::string_view(forced) == "auto") return best;
+  if (std::string_view(forced) == "portable") return AlphaPath::Portable;
+  if (std::string_view(forced) == "avx512") {
+    if (best == AlphaPath::Avx512) return best;
+    spdlog::warn("ROCKBAKE_ALPHA_PATH=avx512, but this CPU lacks AVX-512F/VPOPCNTDQ: counting on the portable path");
+    return AlphaPath::Portable;
+  }
+  spdlog::warn("ROCKBAKE_ALPHA_PATH={} is not one of auto, portable, avx512: using {}", forced, alphaPathName(best));
+  return best;
+}
+
+std::atomic<AlphaPath>& currentAlphaPath() {
+  static std::atomic<AlphaPath> path{initialAlphaPath()};
+  return path;
+}
+
 }  // namespace
+
+const char* alphaPathName(AlphaPath path) {
+  return path == AlphaPath::Avx512 ? "avx512" : "portable";
+}
+
+bool alphaPathAvailable(AlphaPath path) {
+  return path == AlphaPath::Portable || cpuHasAvx512Path();
+}
+
+AlphaPath alphaPath() {
+  return currentAlphaPath().load(std::memory_order_relaxed);
+}
+
+void setAlphaPath(AlphaPath path) {
+  if (!alphaPathAvailable(path))
+    throw std::invalid_argument(std::string("this CPU cannot count on the ") + alphaPathName(path) + " path");
+  currentAlphaPath().store(path, std::memory_order_relaxed);
+}
 
 AirField::BoundBubble AirField::bind(const Bubble& bubble) const {
   if (bubble.reach > apron_) throw std::logic_error("bubble reaches beyond the air field's apron");
   BoundBubble bound;
   bound.size = int(bubble.offsets.size());
   bound.alpha_flat = bubble.alpha_flat;
+  struct Piece {
+    std::int64_t row_bytes;  // from the centre's row to this piece's row
+    int x_min, length;
+  };
+  std::vector<Piece> pieces;
   for (const auto& row : bubble.rows) {
-    const std::ptrdiff_t rows_away = std::ptrdiff_t(row.dz) * rows_y_ + row.dy;
-    const int length = row.x_max - row.x_min + 1;
-    bound.short_rows = bound.short_rows && length <= kMaxShortRow;
-    const std::uint64_t mask = length >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << length) - 1;
-    bound.rows.push_back({rows_away * std::ptrdiff_t(words_per_row_), row.x_min, row.x_max, mask});
+    const std::int64_t rows_away = std::int64_t(row.dz) * rows_y_ + row.dy;
+    for (int x = row.x_min; x <= row.x_max; x += kMaxPiece)
+      pieces.push_back({rows_away * std::int64_t(words_per_row_) * 8, x, std::min(kMaxPiece, row.x_max - x + 1)});
   }
+  bound.pieces = pieces.size();
+  bound.byte_offset.resize(8 * pieces.size());
+  bound.mask.resize(8 * pieces.size());
+  for (int phase = 0; phase < 8; ++phase)
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      // The centre's bit is 8 B + phase; the piece starts at bit 8 B + phase + x_min.
+      const int first = phase + pieces[i].x_min;
+      const std::int64_t offset = pieces[i].row_bytes + (first >> 3);  // floor division
+      if (offset < INT32_MIN || offset > INT32_MAX) throw std::length_error("air field too large for 32-bit offsets");
+      bound.byte_offset[std::size_t(phase) * pieces.size() + i] = std::int32_t(offset);
+      bound.mask[std::size_t(phase) * pieces.size() + i] = ((std::uint64_t(1) << pieces[i].length) - 1) << (first & 7);
+    }
   return bound;
 }
 
-namespace {
-
-// Set bits of `row` in the bit range [first, last], both inclusive.
-inline int popcountRange(const std::uint64_t* row, int first, int last) {
-  const int w0 = first >> 6, w1 = last >> 6;
-  const int lo = first & 63, hi = last & 63;
-  const std::uint64_t high_mask = ~std::uint64_t(0) >> (63 - hi);
-  if (w0 == w1) return std::popcount((row[w0] >> lo) & (high_mask >> lo));
-  int count = std::popcount(row[w0] >> lo);
-  for (int w = w0 + 1; w < w1; ++w) count += std::popcount(row[w]);
-  return count + std::popcount(row[w1] & high_mask);
+int AirField::countAir(const BoundBubble& bubble, int x, int y, int z) const {
+  const int bit = x + x_pad_bits_;
+  const unsigned char* base = reinterpret_cast<const unsigned char*>(rowWords(y, z)) + (bit >> 3);
+  const std::size_t phase = std::size_t(bit & 7);
+  const std::int32_t* offset = bubble.byte_offset.data() + phase * bubble.pieces;
+  const std::uint64_t* mask = bubble.mask.data() + phase * bubble.pieces;
+  // Two sums, so consecutive pieces do not wait on each other.
+  int air0 = 0, air1 = 0;
+  std::size_t i = 0;
+  for (; i + 1 < bubble.pieces; i += 2) {
+    air0 += std::popcount(loadWord(base + offset[i]) & mask[i]);
+    air1 += std::popcount(loadWord(base + offset[i + 1]) & mask[i + 1]);
+  }
+  if (i < bubble.pieces) air0 += std::popcount(loadWord(base + offset[i]) & mask[i]);
+  return air0 + air1;
 }
 
-}  // namespace
+void AirField::countAirRun(const BoundBubble& bubble, int x0, int y, int z, const std::uint8_t* dx, int n,
+                           int* out) const {
+  countAirRun(alphaPath(), bubble, x0, y, z, dx, n, out);
+}
 
-int AirField::countAir(const BoundBubble& bubble, int x, int y, int z) const {
-  const std::uint64_t* centre = rowWords(y, z);
-  const int bit = x + x_pad_bits_;
-  int air = 0;
-  if (bubble.short_rows) {
-    // The hot path: one unaligned load, shift, mask and popcount per row.
-    for (const auto& row : bubble.rows) {
-      const int first = bit + row.x_min;
-      std::uint64_t bits;
-      std::memcpy(&bits, reinterpret_cast<const unsigned char*>(centre + row.word_offset) + (first >> 3), sizeof bits);
-      air += std::popcount((bits >> (first & 7)) & row.mask);
-    }
-    return air;
+void AirField::countAirRun(AlphaPath path, const BoundBubble& bubble, int x0, int y, int z, const std::uint8_t* dx,
+                           int n, int* out) const {
+  if (n == 1) {
+    out[0] = countAir(bubble, x0, y, z);
+    return;
   }
-  for (const auto& row : bubble.rows) air += popcountRange(centre + row.word_offset, bit + row.x_min, bit + row.x_max);
-  return air;
+  const int bit = x0 + x_pad_bits_;
+  const unsigned char* base = reinterpret_cast<const unsigned char*>(rowWords(y, z)) + (bit >> 3);
+#ifdef ROCKBAKE_HAVE_AVX512_PATH
+  if (path == AlphaPath::Avx512) return countRunAvx512(bubble, base, bit & 7, dx, n, out);
+#else
+  (void)path;
+#endif
+  countRunPortable(bubble, base, bit & 7, dx, n, out);
 }
 
 int naiveCountAir(const VoxelRock& rock, const Bubble& bubble, int x, int y, int z) {
@@ -118,6 +249,20 @@ BoundEstimator bindEstimator(const AirField& field, const BubbleEstimator& estim
     bound.weights.push_back(m.weight);
   }
   return bound;
+}
+
+void exposureRun(const AirField& field, const BoundEstimator& estimator, int x0, int y, int z, const std::uint8_t* dx,
+                 int n, double* s) {
+  for (int k = 0; k < n; ++k) s[k] = 0.0;
+  int counts[AirField::kRunWidth];
+  for (std::size_t i = 0; i < estimator.members.size(); ++i) {
+    const auto& bubble = estimator.members[i];
+    field.countAirRun(bubble, x0, y, z, dx, n, counts);
+    for (int k = 0; k < n; ++k) {
+      const double alpha = double(counts[k]) / double(bubble.size);
+      s[k] += estimator.weights[i] * calibratedExposure(alpha, bubble.alpha_flat);
+    }
+  }
 }
 
 double exposureAt(const AirField& field, const BoundEstimator& estimator, int x, int y, int z) {

@@ -108,7 +108,9 @@ void assignDurability(VoxelRock& rock, const DurabilityField& field) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x) {
         const std::size_t i = g.index(x, y, z);
-        rock.durability[i] = rock.material[i] == Material::Rock ? float(field.at(g.center(x, y, z), altitude)) : 0.f;
+        const std::size_t row = std::size_t(y) + std::size_t(g.ny) * std::size_t(z);
+        rock.durability.set(row, x,
+                            rock.material[i] == Material::Rock ? float(field.at(g.center(x, y, z), altitude)) : 0.f);
       }
   });
 }

@@ -25,13 +25,19 @@ GridLayout computeGridLayout(const SimParams& preset) {
 }
 
 std::uint64_t estimateSimulationBytes(const GridLayout& layout) {
-  // material (1) + integrity (4) + durability (4) + an exposure flag (1)
-  // + the air bit field with its apron + work lists for about a third of the
-  // cells being exposed at once (index + integrity + flag).
   const std::uint64_t cells = layout.cellCount();
+  const std::uint64_t rows = std::uint64_t(layout.ny) * std::uint64_t(layout.nz);
+  // Rock lies inside the domain: the grid less its margin on four sides and the top.
+  const auto inner = [&](int n, int sides) { return std::uint64_t(std::max(0, n - sides * layout.margin)); };
+  const std::uint64_t domain = inner(layout.nx, 2) * inner(layout.ny, 2) * inner(layout.nz, 1);
   const std::uint64_t apron = std::uint64_t(layout.margin);
   const std::uint64_t field_bits = (layout.nx + 2 * apron + 128) * (layout.ny + 2 * apron) * (layout.nz + 2 * apron);
-  return cells * 10 + field_bits / 8 + cells / 3 * 9;
+  // material (1 byte a cell); integrity and durability (4 + 4 bytes a rock
+  // cell, at most the domain, plus a span header per row for each); the air
+  // field; five bit planes (exposed, colluvium, and rockfall's visited,
+  // removed and clustered marks); work lists for the exposed voxels, at most
+  // about a tenth of the domain at once (cell, flag and counts: 16 bytes).
+  return cells + domain * 8 + rows * 2 * 32 + field_bits / 8 + cells * 5 / 8 + domain / 10 * 16;
 }
 
 }  // namespace rockbake

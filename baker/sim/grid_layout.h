@@ -14,8 +14,10 @@ namespace rockbake {
 // reach + 1 voxels on the four sides and the top.
 GridLayout computeGridLayout(const SimParams& params);
 
-// Bytes the simulation needs for a layout (grids, bit planes, work lists): the
-// memory guard compares it with the machine's memory before allocating.
+// Bytes the simulation needs for a layout, at most: materials (a byte a cell),
+// integrity and durability over the whole domain (the margin holds no rock),
+// the bit planes and work lists. The memory guard compares it with the
+// machine's memory before allocating.
 std::uint64_t estimateSimulationBytes(const GridLayout& layout);
 
 }  // namespace rockbake

@@ -1,8 +1,10 @@
 #include "sim/rockfall.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace rockbake {
@@ -18,8 +20,9 @@ inline bool isSolid(Material m) {
 
 RockfallSolver::RockfallSolver(const GridLayout& layout)
     : layout_(layout),
-      stamp_(layout.cellCount(), 0),
-      state_(layout.cellCount(), 0),
+      removed_{std::vector<std::uint64_t>((layout.cellCount() + 63) / 64, 0)},
+      clustered_{removed_.words},
+      in_piece_{removed_.words},
       local_budget_(std::size_t(layout.ny) * std::size_t(layout.nz) * 4) {}
 
 // For each 6-connected cluster K of removed cells, the solid cells next to K
@@ -27,90 +30,132 @@ RockfallSolver::RockfallSolver(const GridLayout& layout)
 // through solid. Then any path through K can be rerouted, so every cell keeps
 // the ground connection it had. The searches stay near each cluster and within
 // a budget; false means "not shown", and the caller labels the grid.
+//
+// The clusters are gathered first, then searched in parallel (each search
+// reads the grid only). The answer does not depend on the order: it is false
+// when some cluster's search fails or when the searches together visit more
+// cells than the budget, whichever way they are scheduled.
 bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vector<Cell>& removed) {
   const GridLayout& g = layout_;
-  // Mark the removed cells (1); cells already put in a cluster become 2.
-  for (Cell c : removed) state_[c] = 1;
-  struct Unmark {
-    std::vector<std::uint8_t>& state;
-    const std::vector<Cell>& cells;
-    ~Unmark() {
-      for (Cell c : cells) state[c] = 0;
-    }
-  } unmark{state_, removed};
-  std::size_t spent = 0;
-  std::vector<Cell> cluster, neighbours, queue;
-  for (Cell start : removed) {
-    if (state_[start] != 1) continue;
-    // Gather the cluster, the solid cells around it and its bounding box.
-    cluster.assign(1, start);
-    state_[start] = 2;
-    neighbours.clear();
-    bool touches_ground = false;
-    VoxelCoord lo = g.coord(start), hi = lo;
-    for (std::size_t i = 0; i < cluster.size(); ++i) {
-      const VoxelCoord p = g.coord(cluster[i]);
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-      if (p.z == 0) touches_ground = true;
-      for (const auto& o : kFaceNeighbours) {
-        if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
-        const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
-        if (isSolid(rock.material[n])) {
-          neighbours.push_back(n);
-        } else if (state_[n] == 1) {
-          state_[n] = 2;
-          cluster.push_back(n);
-        }
+  struct Cluster {
+    VoxelCoord lo, hi;             // bounding box of the removed cells
+    bool touches_ground = false;   // a removed cell was on the layer z = 0
+    std::vector<Cell> neighbours;  // solid cells next to it, sorted
+  };
+  std::vector<Cluster> clusters;
+  {
+    // Mark the removed cells; those already put in a cluster are also clustered.
+    for (Cell c : removed) removed_.set(c);
+    struct Unmark {
+      BitPlane &removed, &clustered;
+      const std::vector<Cell>& cells;
+      ~Unmark() {
+        for (Cell c : cells) removed.clear(c), clustered.clear(c);
       }
-    }
-    std::sort(neighbours.begin(), neighbours.end());
-    neighbours.erase(std::unique(neighbours.begin(), neighbours.end()), neighbours.end());
-    const std::size_t goals = neighbours.size() + (touches_ground ? 1 : 0);
-    if (goals <= 1) continue;  // nothing on one side of the cluster to be cut from the other
-
-    // Search from one neighbour until every other neighbour is found, inside
-    // the cluster's box grown by `grow` voxels: paths found there are real
-    // paths, and the detours that matter are local. The ground joins every
-    // solid cell of the layer z = 0 (it holds them all up), so reaching that
-    // layer reaches the ground and, through it, the rest of the layer.
-    const auto connectedWithin = [&](int grow) {
-      const VoxelCoord box_lo{lo.x - grow, lo.y - grow, lo.z - grow}, box_hi{hi.x + grow, hi.y + grow, hi.z + grow};
-      const auto inBox = [&](const VoxelCoord& q) {
-        return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z && q.x <= box_hi.x &&
-               q.y <= box_hi.y && q.z <= box_hi.z;
-      };
-      if (++current_stamp_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), current_stamp_ = 1;
-      std::size_t found = 0;
-      bool ground_found = false;
-      const auto visit = [&](Cell c) {
-        if (stamp_[c] == current_stamp_ || !isSolid(rock.material[c])) return;
-        stamp_[c] = current_stamp_;
-        queue.push_back(c);
-        if (std::binary_search(neighbours.begin(), neighbours.end(), c)) ++found;
-      };
-      queue.clear();
-      visit(neighbours.front());
-      for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
-        if (++spent > local_budget_) return false;
-        const VoxelCoord p = g.coord(queue[head]);
-        if (p.z == 0 && !ground_found) {
-          ground_found = true;
-          if (touches_ground) ++found;
-          for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
-            for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
-        }
+    } unmark{removed_, clustered_, removed};
+    std::vector<Cell> cluster;
+    for (Cell start : removed) {
+      if (clustered_.test(start)) continue;
+      // Gather the cluster, the solid cells around it and its bounding box.
+      cluster.assign(1, start);
+      clustered_.set(start);
+      Cluster k;
+      k.lo = k.hi = g.coord(start);
+      for (std::size_t i = 0; i < cluster.size(); ++i) {
+        const VoxelCoord p = g.coord(cluster[i]);
+        k.lo = {std::min(k.lo.x, p.x), std::min(k.lo.y, p.y), std::min(k.lo.z, p.z)};
+        k.hi = {std::max(k.hi.x, p.x), std::max(k.hi.y, p.y), std::max(k.hi.z, p.z)};
+        if (p.z == 0) k.touches_ground = true;
         for (const auto& o : kFaceNeighbours) {
-          const VoxelCoord q{p.x + o[0], p.y + o[1], p.z + o[2]};
-          if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
+          if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
+          const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
+          if (isSolid(rock.material[n])) {
+            k.neighbours.push_back(n);
+          } else if (removed_.test(n) && !clustered_.test(n)) {
+            clustered_.set(n);
+            cluster.push_back(n);
+          }
         }
       }
-      return found >= goals;
-    };
-    // Most clusters are settled within one voxel around them; a few need room.
-    if (!connectedWithin(1) && !connectedWithin(4)) return false;
+      std::sort(k.neighbours.begin(), k.neighbours.end());
+      k.neighbours.erase(std::unique(k.neighbours.begin(), k.neighbours.end()), k.neighbours.end());
+      // Nothing on one side of the cluster to be cut from the other: no search.
+      if (k.neighbours.size() + (k.touches_ground ? 1 : 0) > 1) clusters.push_back(std::move(k));
+    }
   }
-  return true;
+
+  // Cells visited by all searches so far (flushed in batches), and whether
+  // some search has failed: either ends every search early with "false".
+  std::atomic<std::size_t> spent{0};
+  std::atomic<bool> failed{false};
+  constexpr std::size_t kFlush = 1024;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters.size(), 1), [&](const auto& range) {
+    Scratch& scratch = scratch_.local();
+    if (scratch.visited.words.empty()) scratch.visited.words.assign((g.cellCount() + 63) / 64, 0);
+    BitPlane& visited = scratch.visited;
+    std::vector<Cell>& queue = scratch.queue;
+    for (std::size_t index = range.begin(); index != range.end() && !failed.load(std::memory_order_relaxed); ++index) {
+      const Cluster& k = clusters[index];
+      const std::size_t goals = k.neighbours.size() + (k.touches_ground ? 1 : 0);
+      std::size_t unflushed = 0;
+      const auto flush = [&] {
+        const std::size_t total = spent.fetch_add(unflushed, std::memory_order_relaxed) + unflushed;
+        unflushed = 0;
+        return total <= local_budget_;
+      };
+      // Search from one neighbour until every other neighbour is found, inside
+      // the cluster's box grown by `grow` voxels: paths found there are real
+      // paths, and the detours that matter are local. The ground joins every
+      // solid cell of the layer z = 0 (it holds them all up), so reaching that
+      // layer reaches the ground and, through it, the rest of the layer.
+      const auto connectedWithin = [&](int grow) {
+        const VoxelCoord box_lo{k.lo.x - grow, k.lo.y - grow, k.lo.z - grow};
+        const VoxelCoord box_hi{k.hi.x + grow, k.hi.y + grow, k.hi.z + grow};
+        const auto inBox = [&](const VoxelCoord& q) {
+          return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z &&
+                 q.x <= box_hi.x && q.y <= box_hi.y && q.z <= box_hi.z;
+        };
+        std::size_t found = 0;
+        bool ground_found = false;
+        const auto visit = [&](Cell c) {
+          if (visited.test(c) || !isSolid(rock.material[c])) return;
+          visited.set(c);
+          queue.push_back(c);
+          if (std::binary_search(k.neighbours.begin(), k.neighbours.end(), c)) ++found;
+        };
+        // Every visited cell is in the queue: clearing it clears the plane.
+        struct Unvisit {
+          BitPlane& visited;
+          std::vector<Cell>& queue;
+          ~Unvisit() {
+            for (Cell c : queue) visited.clear(c);
+            queue.clear();
+          }
+        } unvisit{visited, queue};
+        queue.clear();
+        visit(k.neighbours.front());
+        for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
+          if (++unflushed == kFlush && (!flush() || failed.load(std::memory_order_relaxed))) return false;
+          const VoxelCoord p = g.coord(queue[head]);
+          if (p.z == 0 && !ground_found) {
+            ground_found = true;
+            if (k.touches_ground) ++found;
+            for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
+              for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
+          }
+          for (const auto& o : kFaceNeighbours) {
+            const VoxelCoord q{p.x + o[0], p.y + o[1], p.z + o[2]};
+            if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
+          }
+        }
+        return found >= goals;
+      };
+      // Most clusters are settled within one voxel around them; a few need room.
+      const bool shown = connectedWithin(1) || connectedWithin(4);
+      if (!flush() || !shown) failed.store(true, std::memory_order_relaxed);
+    }
+  });
+  return !failed.load() && spent.load() <= local_budget_;
 }
 
 // Solid cells not connected to the ground, in cell order. Labelling works on
@@ -232,7 +277,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
 
   // Drop the pieces, lowest first, in passes until none moves: a piece that
   // landed on another floating piece falls again once that one has moved.
-  std::vector<std::uint8_t>& in_piece = state_;  // all 0 outside the local test
+  BitPlane& in_piece = in_piece_;
   const std::size_t layer = std::size_t(g.nx) * std::size_t(g.ny);
   for (bool moved = true; moved;) {
     moved = false;
@@ -242,19 +287,19 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
                      [&](std::size_t a, std::size_t b) { return pieces[a].front() < pieces[b].front(); });
     for (std::size_t id : order) {
       auto& piece = pieces[id];
-      for (Cell c : piece) in_piece[c] = 1;
+      for (Cell c : piece) in_piece.set(c);
       // How far the piece can fall: the smallest air gap below any of its
       // cells that sits on something other than the piece itself.
       int drop = std::numeric_limits<int>::max();
       for (Cell c : piece) {
         const VoxelCoord p = g.coord(c);
-        if (p.z > 0 && in_piece[c - layer]) continue;
+        if (p.z > 0 && in_piece.test(Cell(c - layer))) continue;
         int gap = 0, z = p.z - 1;
         while (z >= 0 && !isSolid(rock.material[g.index(p.x, p.y, z)])) ++gap, --z;
-        if (z >= 0 && in_piece[g.index(p.x, p.y, z)]) continue;
+        if (z >= 0 && in_piece.test(Cell(g.index(p.x, p.y, z)))) continue;
         drop = std::min(drop, gap);
       }
-      for (Cell c : piece) in_piece[c] = 0;
+      for (Cell c : piece) in_piece.clear(c);
       if (drop == 0 || drop == std::numeric_limits<int>::max()) continue;
       moved = true;
       // Move bottom-up (cells are in ascending order, so z ascends).
@@ -264,10 +309,10 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
         const bool crumble = mode == RockfallMode::Crumble && rock.material[c] == Material::Rock;
         outcome.crumbled += crumble ? 1 : 0;
         rock.material[to] = crumble ? Material::Colluvium : rock.material[c];
-        rock.integrity[to] = rock.integrity[c];
-        rock.durability[to] = crumble ? 0.f : rock.durability[c];
+        rock.integrity.set(to, rock.integrity[c]);
+        rock.durability.set(to, crumble ? 0.f : rock.durability[c]);
         rock.material[c] = Material::Air;
-        rock.durability[c] = 0.f;
+        rock.durability.set(c, 0.f);
         outcome.changed.push_back(c);
         outcome.changed.push_back(to);
       }

@@ -8,12 +8,15 @@
 // ground, where the cluster touched it), removing them cannot have cut
 // anything loose, and no labelling is needed. Otherwise the grid is labelled
 // by runs of solid cells along x (found per layer in parallel, joined with
-// union-find): cost grows with the number of runs, not voxels.
+// union-find): cost grows with the number of runs, not voxels. Both run on
+// all threads and give the same answer on any number.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "core/voxel_rock.h"
 #include "preset/preset.h"
@@ -46,11 +49,26 @@ class RockfallSolver {
   bool removalKeepsSupport(const VoxelRock& rock, const std::vector<std::uint32_t>& removed);
   std::vector<std::uint32_t> floatingCells(const VoxelRock& rock) const;
 
+  // One bit per cell; every plane is all clear between calls.
+  struct BitPlane {
+    std::vector<std::uint64_t> words;
+    bool test(std::uint32_t c) const { return (words[c >> 6] >> (c & 63)) & 1u; }
+    void set(std::uint32_t c) { words[c >> 6] |= std::uint64_t(1) << (c & 63); }
+    void clear(std::uint32_t c) { words[c >> 6] &= ~(std::uint64_t(1) << (c & 63)); }
+  };
+
+  // Per worker thread: the cells one search of the local test has visited.
+  struct Scratch {
+    BitPlane visited;  // cleared from the queue after each search
+    std::vector<std::uint32_t> queue;
+  };
+
   GridLayout layout_;
-  std::vector<std::uint32_t> stamp_;  // per cell: the search that last visited it
-  std::uint32_t current_stamp_ = 0;
-  std::vector<std::uint8_t> state_;  // per cell, during the local test: 1 removed, 2 clustered
-  std::size_t local_budget_;         // cells; by default about what labelling by runs costs
+  tbb::enumerable_thread_specific<Scratch> scratch_;
+  BitPlane removed_;          // during the local test: the removed cells
+  BitPlane clustered_;        // during the local test: removed cells already put in a cluster
+  BitPlane in_piece_;         // while a piece's drop is measured
+  std::size_t local_budget_;  // cells; by default about what labelling by runs costs
 };
 
 }  // namespace rockbake

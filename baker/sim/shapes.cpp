@@ -116,9 +116,6 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
     inside = insideTest(shape, center[0], center[1], center[2], preset);
   }
 
-  rock.integrity.assign(g.cellCount(), 1.f);
-  rock.durability.assign(g.cellCount(), 0.f);
-
   std::vector<char> clipped(std::size_t(g.nz), 0);
   tbb::parallel_for(0, g.nz, [&](int z) {
     for (int y = 0; y < g.ny; ++y)
@@ -135,6 +132,7 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
   if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end())
     spdlog::warn("the shape reaches beyond grid.size and was clipped to it");
 
+  resetRockValues(rock);
   assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0));
   return rock;
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -68,17 +69,19 @@ bool isExposed(const VoxelRock& rock, const AirField& field, int x, int y, int z
 }
 
 // A set of cells (sorted by index) defined by a predicate, kept current from
-// the cells that change instead of rescanning the grid.
+// the cells that change instead of rescanning the grid. Membership is one bit
+// per cell.
 template <typename Predicate>
 class TrackedCells {
  public:
-  TrackedCells(const GridLayout& g, Predicate member) : g_(g), member_(std::move(member)), flag_(g.cellCount(), 0) {
+  TrackedCells(const GridLayout& g, Predicate member)
+      : g_(g), member_(std::move(member)), flag_((g.cellCount() + 63) / 64, 0) {
     for (int z = 0; z < g.nz; ++z)
       for (int y = 0; y < g.ny; ++y)
         for (int x = 0; x < g.nx; ++x)
           if (member_(x, y, z)) {
             const Cell c = Cell(g.index(x, y, z));
-            flag_[c] = 1;
+            setFlag(c, true);
             cells_.push_back(c);
           }
   }
@@ -91,9 +94,9 @@ class TrackedCells {
     std::vector<Cell> added;
     bool any_removed = false;
     const auto reevaluate = [&](Cell c, const VoxelCoord& p) {
-      const std::uint8_t now = member_(p.x, p.y, p.z) ? 1 : 0;
-      if (now == flag_[c]) return;
-      flag_[c] = now;
+      const bool now = member_(p.x, p.y, p.z);
+      if (now == flag(c)) return;
+      setFlag(c, now);
       if (now)
         added.push_back(c);
       else
@@ -108,7 +111,7 @@ class TrackedCells {
           reevaluate(Cell(g_.index(p.x + o[0], p.y + o[1], p.z + o[2])), {p.x + o[0], p.y + o[1], p.z + o[2]});
     }
     std::sort(added.begin(), added.end());
-    if (any_removed) std::erase_if(cells_, [this](Cell c) { return !flag_[c]; });
+    if (any_removed) std::erase_if(cells_, [this](Cell c) { return !flag(c); });
     if (!added.empty()) {
       const std::size_t old_size = cells_.size();
       cells_.insert(cells_.end(), added.begin(), added.end());
@@ -117,10 +120,28 @@ class TrackedCells {
   }
 
  private:
+  bool flag(Cell c) const { return (flag_[c >> 6] >> (c & 63)) & 1u; }
+  void setFlag(Cell c, bool on) {
+    const std::uint64_t bit = std::uint64_t(1) << (c & 63);
+    flag_[c >> 6] = on ? (flag_[c >> 6] | bit) : (flag_[c >> 6] & ~bit);
+  }
+
   GridLayout g_;
   Predicate member_;
-  std::vector<std::uint8_t> flag_;
+  std::vector<std::uint64_t> flag_;
   std::vector<Cell> cells_;
+};
+
+struct ExposedRock {
+  const VoxelRock* rock;
+  const AirField* field;
+  bool operator()(int x, int y, int z) const { return isExposed(*rock, *field, x, y, z); }
+};
+struct ColluviumCell {
+  const VoxelRock* rock;
+  bool operator()(int x, int y, int z) const {
+    return rock->material[rock->layout.index(x, y, z)] == Material::Colluvium;
+  }
 };
 
 }  // namespace
@@ -138,15 +159,15 @@ struct WeatheringSimulation::State {
         estimators(buildEstimators(preset, rock.layout.h, reach)),
         field(rock, reach),
         graph(bindBubbleGraph(preset, rock.layout, field, estimators)),
-        exposed(rock.layout, [this](int x, int y, int z) { return isExposed(rock, field, x, y, z); }),
-        colluvium(
-            rock.layout,
-            [this](int x, int y, int z) { return rock.material[rock.layout.index(x, y, z)] == Material::Colluvium; }),
+        exposed(rock.layout, ExposedRock{&rock, &field}),
+        colluvium_count(rock.count(Material::Colluvium)),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
         planned_cycles(plannedCycles(preset, rock.layout.h)),
         initial_rock(rock.count(Material::Rock)),
-        rock_count(initial_rock) {}
+        rock_count(initial_rock) {
+    if (preset.colluvium.removal > 0.0) colluvium.emplace(rock.layout, ColluviumCell{&rock});
+  }
 
   // Rockfall and colluvium need the ground to fall and pile onto (SPEC §2.1).
   bool rockfallOn() const { return rock.layout.ground && preset.rockfall.mode != RockfallMode::Off; }
@@ -155,16 +176,17 @@ struct WeatheringSimulation::State {
     return rock.layout.ground && (preset.colluvium.yield > 0.0 || preset.rockfall.mode == RockfallMode::Crumble);
   }
 
-  using CellPredicate = std::function<bool(int, int, int)>;
-
   const SimParams preset;  // a copy: the simulation owns its parameters
   VoxelRock rock;
   int reach = 1;
   std::vector<BubbleEstimator> estimators;
   AirField field;
   BubbleGraph graph;
-  TrackedCells<CellPredicate> exposed;    // rock with a face on air
-  TrackedCells<CellPredicate> colluvium;  // every colluvium voxel
+  TrackedCells<ExposedRock> exposed;  // rock with a face on air
+  // Every colluvium voxel, in cell order: only removal needs the list, so it
+  // is kept only when removal is on; the count is kept always.
+  std::optional<TrackedCells<ColluviumCell>> colluvium;
+  std::size_t colluvium_count;
   RockfallSolver rockfall;
   ColluviumModel colluvium_model;
   int planned_cycles;
@@ -215,23 +237,44 @@ CycleStats WeatheringSimulation::step() {
   auto phase_start = Clock::now();
 
   // Weathering: every exposure comes from the state at the cycle's start;
-  // each task writes only its own voxels' integrity.
+  // each task writes only its own voxels' integrity. Voxels of one x-row up
+  // to 7 apart are counted together (AirField::countAirRun).
   const std::vector<Cell>& cells = st.exposed.cells();
   st.decimate.assign(cells.size(), 0);
   const BubbleGraph& graph = st.graph;
   const AirField& field = st.field;
+  const std::size_t nx = std::size_t(g.nx);
+  // Every exposed voxel gets its integrity slot before the parallel writes.
+  for (Cell c : cells)
+    if (!rock.integrity.covers(c / nx, int(c % nx))) rock.integrity.cover(c / nx, int(c % nx), int(c % nx));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 512),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const Cell c = cells[i];
-                        const VoxelCoord p = g.coord(c);
+                      std::uint8_t dx[AirField::kRunWidth];
+                      double s[AirField::kRunWidth];
+                      for (std::size_t i = range.begin(); i != range.end();) {
+                        const Cell c0 = cells[i];
+                        const VoxelCoord p = g.coord(c0);
+                        int n = 1;
+                        dx[0] = 0;
+                        while (n < AirField::kRunWidth && i + std::size_t(n) < range.end() &&
+                               cells[i + std::size_t(n)] - c0 < Cell(AirField::kRunWidth) &&
+                               p.x + int(cells[i + std::size_t(n)] - c0) < g.nx) {
+                          dx[n] = std::uint8_t(cells[i + std::size_t(n)] - c0);
+                          ++n;
+                        }
                         const std::size_t band = std::size_t(graph.band_of_layer[std::size_t(p.z)]);
-                        const double s = exposureAt(field, graph.estimators[band], p.x, p.y, p.z);
-                        const double w = graph.spheroidal[band] * applyResponse(preset.response, s) +
-                                         graph.cavernous[band] * applyResponse(preset.response, 1.0 - s);
-                        const float integrity = float(double(rock.integrity[c]) - w / double(rock.durability[c]));
-                        rock.integrity[c] = integrity;
-                        st.decimate[i] = integrity <= 0.f;
+                        exposureRun(field, graph.estimators[band], p.x, p.y, p.z, dx, n, s);
+                        const std::size_t row = c0 / nx;
+                        for (int k = 0; k < n; ++k) {
+                          const int x = p.x + dx[k];
+                          const double w = graph.spheroidal[band] * applyResponse(preset.response, s[k]) +
+                                           graph.cavernous[band] * applyResponse(preset.response, 1.0 - s[k]);
+                          float& slot = rock.integrity.slot(row, x);
+                          const float integrity = float(double(slot) - w / double(rock.durability.at(row, x)));
+                          slot = integrity;
+                          st.decimate[i + std::size_t(k)] = integrity <= 0.f;
+                        }
+                        i += std::size_t(n);
                       }
                     });
 
@@ -241,7 +284,7 @@ CycleStats WeatheringSimulation::step() {
     if (st.decimate[i]) decimated.push_back(cells[i]);
   for (Cell c : decimated) {
     rock.material[c] = Material::Air;
-    rock.durability[c] = 0.f;
+    rock.durability.set(c, 0.f);
   }
   CycleStats stats;
   stats.curvature_seconds = secondsSince(phase_start);
@@ -269,8 +312,10 @@ CycleStats WeatheringSimulation::step() {
     }
     stats.deposited = st.colluvium_model.deposit(rock, decimated, changed, unstable);
     st.colluvium_model.settle(rock, unstable, changed, vacated);
-    st.colluvium.update(changed, false);
-    stats.removed = st.colluvium_model.remove(rock, st.colluvium.cells(), st.cycle + 1, changed, vacated, unstable);
+    if (st.colluvium) {
+      st.colluvium->update(changed, false);
+      stats.removed = st.colluvium_model.remove(rock, st.colluvium->cells(), st.cycle + 1, changed, vacated, unstable);
+    }
     st.colluvium_model.settle(rock, unstable, changed, vacated);
   }
 
@@ -301,13 +346,15 @@ CycleStats WeatheringSimulation::step() {
     st.field.setAir(p.x, p.y, p.z, rock.material[c] == Material::Air);
   }
   st.exposed.update(changed, true);
-  st.colluvium.update(changed, false);
+  if (st.colluvium) st.colluvium->update(changed, false);
 
   stats.cycle = ++st.cycle;
   stats.time = st.cycle * g.h;
   st.rock_count -= decimated.size() + stats.crumbled;
   stats.rock = st.rock_count;
-  stats.colluvium = st.colluvium.cells().size();
+  // Settling and falling move colluvium; only these make or unmake it.
+  st.colluvium_count += stats.deposited + stats.crumbled - stats.removed;
+  stats.colluvium = st.colluvium_count;
   return stats;
 }
 
