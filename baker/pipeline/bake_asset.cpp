@@ -211,7 +211,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
     const std::filesystem::path base =
         options.manifest.base_dir.empty() ? preset.file.parent_path() : options.manifest.base_dir;
     asset.input_hash = bakeInputHash(preset, options.mesh, options.render, base);
-    writeAssetJson(asset, summary.asset_dir);
+    writeAssetJson(asset, dir);
   }
 
   summary.seconds = clock.elapsed();
