@@ -84,10 +84,10 @@ typename TreeT::Ptr denseToTree(const GridLayout& layout, typename TreeT::ValueT
 
 template <typename GridT>
 typename GridT::Ptr namedGrid(typename GridT::TreeType::Ptr tree, const char* name,
-                              const openvdb::math::Transform& transform) {
+                              const openvdb::math::Transform::Ptr& transform) {
   auto grid = GridT::create(tree);
   grid->setName(name);
-  grid->setTransform(transform.copy());
+  grid->setTransform(transform);
   return grid;
 }
 
@@ -168,6 +168,8 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
   try {
     // Index space stays voxel (x, y, z); world space has the asset's pivot at the origin.
     const std::array<double, 3> pivot = footprintPivot(rock);
+    // One transform shared by every grid: Transform::copy() rebuilds the map and
+    // recomputes the voxel size from translated corners, which rounds it off h.
     const auto transform = voxelCenterTransform(layout);
     transform->postTranslate(openvdb::Vec3d(-pivot[0], -pivot[1], -pivot[2]));
     auto rockGrid =
@@ -176,20 +178,20 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
                                                                       value = true;
                                                                       return rock.material[cell] == Material::Rock;
                                                                     }),
-                                     "rock", *transform);
+                                     "rock", transform);
     auto colluviumGrid =
         namedGrid<openvdb::BoolGrid>(denseToTree<openvdb::BoolTree>(layout, false,
                                                                     [&](std::size_t cell, bool& value) {
                                                                       value = true;
                                                                       return rock.material[cell] == Material::Colluvium;
                                                                     }),
-                                     "colluvium", *transform);
+                                     "colluvium", transform);
     // The mesh stage's field is shared with it, so it is written from a shallow copy under our name.
     // Otherwise closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
     openvdb::FloatGrid::Ptr sdfGrid =
         rock_sdf && rock_sdf->grid ? rock_sdf->grid->copy()
                                    : openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
-    sdfGrid->setTransform(transform->copy());
+    sdfGrid->setTransform(transform);
     // Built after the level set, whose working grids are the largest part of
     // writing: the two are never in memory at once.
     auto durabilityGrid =
@@ -200,7 +202,7 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
                                                                         value = rock.durability[cell];
                                                                         return true;
                                                                       }),
-                                      "durability", *transform);
+                                      "durability", transform);
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 

@@ -214,12 +214,24 @@ double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, b
   return total;
 }
 
-std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta) {
+std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta,
+                                               bool ground) {
   if (!field || !field->grid || delta == 0.0) return field;
   openvdb::FloatGrid::Ptr moved = field->grid->deepCopy();
   const float d = float(delta);
-  openvdb::tools::foreach (moved->beginValueAll(),
-                           [d](const openvdb::FloatGrid::ValueAllIter& it) { it.setValue(*it - d); });
+  const openvdb::math::Transform& xform = moved->transform();
+  // The ground clip -z stays where it is (max(phi - d, -z)): only the rock's own
+  // surface moved, the cap did not. It was written at index z <= 0 only.
+  const auto clipAt = [&](int k) { return -float(xform.indexToWorld(openvdb::Coord(0, 0, k)).z()); };
+  openvdb::tools::foreach (moved->beginValueAll(), [&](const openvdb::FloatGrid::ValueAllIter& it) {
+    float v = *it - d;
+    if (ground) {
+      openvdb::CoordBBox box;
+      it.getBoundingBox(box);
+      if (box.min().z() <= 0) v = std::max(v, clipAt(std::min(box.max().z(), 0)));
+    }
+    it.setValue(v);
+  });
   return std::make_shared<const SmoothedSdf>(SmoothedSdf{moved});
 }
 

@@ -61,7 +61,9 @@ void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field, bool ground);
 double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, bool ground);
 
 // `field` with its zero crossing moved outwards by delta (phi - delta), to
-// follow a surface moved by matchVolume.
-std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta);
+// follow a surface moved by matchVolume. With `ground`, the clip at z = 0 is
+// kept in place: max(phi - delta, -z) where extractSurfaces clipped.
+std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta,
+                                               bool ground);
 
 }  // namespace rockbake

@@ -47,7 +47,7 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   const double voxel = g.h * g.h * g.h;
   const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
   matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
-  r.rock_sdf = offsetField(r.rock_sdf, delta);
+  r.rock_sdf = offsetField(r.rock_sdf, delta, g.ground);
   r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
