@@ -598,7 +598,9 @@ function fillEditors() {
 
 // ---------------------------------------------------------------- transport, save, bake
 function setupTransport() {
-  $('play').addEventListener('click', () => control({ action: state?.playing ? 'pause' : 'play' }));
+  $('play').addEventListener('click', () =>
+    control(state?.playing ? { action: 'pause' } : { action: 'play', rate: Number($('rate').value) }));
+  $('rate').addEventListener('change', () => { if (state?.playing) control({ action: 'play', rate: Number($('rate').value) }); });
   $('step').addEventListener('click', () => control({ action: 'step' }));
   $('reset').addEventListener('click', () => control({ action: 'reset' }));
   const timeline = $('timeline');
