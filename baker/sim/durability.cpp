@@ -6,7 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "util/hash.h"
+#include "core/hash.h"
 
 namespace rockbake {
 
