@@ -46,8 +46,8 @@ TEST(Checkpoint, ResumedWithoutEditsEqualsTheUninterruptedBake) {
   ASSERT_TRUE(fs::exists(checkpoints / "1.rbk"));
   EXPECT_FALSE(fs::exists(checkpoints / "1.5.rbk")) << "no checkpoint of the finished state";
 
-  const auto resumed = runRockbake({"resume", (checkpoints / "0.5.rbk").string(), "-o", (dir.path() / "c").string(),
-                                    "--no-render"});
+  const auto resumed =
+      runRockbake({"resume", (checkpoints / "0.5.rbk").string(), "-o", (dir.path() / "c").string(), "--no-render"});
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
   for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "rock.obj"}) {
     const std::string a = readBytes(dir.path() / "a" / "small" / file);
@@ -72,9 +72,9 @@ TEST(Checkpoint, AnEditAtTheCheckpointEqualsTheSameKeyframeFromTheStart) {
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
   // The checkpoint's time is cycle 6 at h = 2 / 24, exactly as the simulation computes it.
   const std::string at = fmt::format("{}", 6 * (2.0 / 24));
-  const auto from_start = runRockbake(
-      {"bake", preset.string(), "-o", (dir.path() / "d").string(), "--no-mesh", "--set", "time=1.5", "--set",
-       "durability.keyframes=[{at: " + at + ", points: " + points + ", response: {power: 2.0}}]"});
+  const auto from_start =
+      runRockbake({"bake", preset.string(), "-o", (dir.path() / "d").string(), "--no-mesh", "--set", "time=1.5",
+                   "--set", "durability.keyframes=[{at: " + at + ", points: " + points + ", response: {power: 2.0}}]"});
   ASSERT_EQ(from_start.exit_status, 0) << from_start.output;
   const std::string resumed_vdb = readBytes(dir.path() / "c" / "small" / "rock.vdb");
   EXPECT_EQ(resumed_vdb, readBytes(dir.path() / "d" / "small" / "rock.vdb"));
@@ -87,8 +87,8 @@ TEST(Checkpoint, AnEditAtTheCheckpointEqualsTheSameKeyframeFromTheStart) {
 TEST(Checkpoint, GridShapeSeedAndResolutionCannotChangeOnResume) {
   TempDir dir;
   const fs::path preset = writeSmall(dir);
-  ASSERT_EQ(runRockbake({"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25",
-                         "--no-mesh"})
+  ASSERT_EQ(runRockbake(
+                {"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25", "--no-mesh"})
                 .exit_status,
             0);
   const std::string checkpoint = (dir.path() / "b" / "small" / "checkpoints" / "0.25.rbk").string();
@@ -108,8 +108,8 @@ TEST(Checkpoint, GridShapeSeedAndResolutionCannotChangeOnResume) {
 TEST(Checkpoint, TruncatedCorruptAndForeignFilesAreClearErrors) {
   TempDir dir;
   const fs::path preset = writeSmall(dir);
-  ASSERT_EQ(runRockbake({"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25",
-                         "--no-mesh"})
+  ASSERT_EQ(runRockbake(
+                {"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25", "--no-mesh"})
                 .exit_status,
             0);
   const std::string whole = readBytes(dir.path() / "b" / "small" / "checkpoints" / "0.25.rbk");
