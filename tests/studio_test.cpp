@@ -24,7 +24,8 @@ using test::TempDir;
 // The small box preset with more cycles, colluvium and rockfall on (the
 // state a snapshot must carry: accumulators, fallen rock).
 Preset longSmallPreset(const TempDir& dir, const std::string& extra = "") {
-  return parsePreset(std::string(test::kSmallPreset) + extra, dir.path() / "small.yaml", {{"time=1.5"}, std::nullopt, std::nullopt});
+  return parsePreset(std::string(test::kSmallPreset) + extra, dir.path() / "small.yaml",
+                     {{"time=1.5"}, std::nullopt, std::nullopt});
 }
 
 void expectSameRock(const VoxelRock& a, const VoxelRock& b) {
@@ -218,7 +219,9 @@ TEST(StudioSession, RefusesEditsAndSavesItCannotHonour) {
   EXPECT_EQ(status([&] { studio.save("goblin", true); }), 409);
   EXPECT_EQ(status([&] { studio.save("base", true); }), 409);
   EXPECT_EQ(status([&] { studio.seek(-1); }), 400);
-  EXPECT_EQ(status([&] { studio.edit({{"bubbles", {{{"up_to", 1.0}, {"bubble", {{"sphere", {{"radius", 2.0}}}}}}}}}); }),
+  EXPECT_EQ(status([&] {
+              studio.edit({{"bubbles", {{{"up_to", 1.0}, {"bubble", {{"sphere", {{"radius", 2.0}}}}}}}}});
+            }),
             400);
   EXPECT_EQ(studio.cycle(), 1);
   EXPECT_TRUE(studio.preset().durability.keyframes.empty());

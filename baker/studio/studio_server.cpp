@@ -161,8 +161,8 @@ int runStudio(const StudioOptions& options) {
     json s = session.state();
     s["playing"] = playing.load();
     s["rate"] = rate.load();
-    s["bake"] = {{"state", bake.state}, {"progress", bake.progress}, {"message", bake.message},
-                 {"asset_dir", bake.asset_dir}};
+    s["bake"] = {
+        {"state", bake.state}, {"progress", bake.progress}, {"message", bake.message}, {"asset_dir", bake.asset_dir}};
     return s;
   };
   // Runs `handler` under the lock, turning refusals into 4xx answers.
@@ -201,124 +201,128 @@ int runStudio(const StudioOptions& options) {
     fail(res, 500, message);
   });
 
-  server.Get("/api/state", guarded([&](const httplib::Request&, httplib::Response& res) { reply(res, 200, stateJson()); }));
+  server.Get("/api/state",
+             guarded([&](const httplib::Request&, httplib::Response& res) { reply(res, 200, stateJson()); }));
 
-  server.Post("/api/control", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    json body = parseBody(req);
-    if (body.is_string()) body = {{"action", body}};
-    if (!body.is_object() || body.empty() || (body.size() > 1 && !(body.size() == 2 && body.contains("rate"))))
-      throw StudioError(400, R"(expected one of {"action": "play"|"pause"|"step"|"reset"}, {"run_until": t}, {"seek": t})");
-    const auto number = [&](const char* key) {
-      if (!body[key].is_number()) throw StudioError(400, std::string(key) + ": expected a time (a number >= 0)");
-      return body[key].get<double>();
-    };
-    if (body.contains("action")) {
-      const std::string action = body["action"].is_string() ? body["action"].get<std::string>() : "";
-      if (action == "play") {
-        const json requested = body.value("rate", json(0.0));
-        if (!requested.is_number() || requested.get<double>() < 0 || requested.get<double>() > 1000)
-          throw StudioError(400, "rate: expected cycles per second, 0 (as fast as they run) to 1000");
-        rate = requested.get<double>();
-        playing = true;
-        wake.notify_all();
-      } else if (action == "pause") {
-        playing = false;
-      } else if (action == "step") {
-        playing = false;
-        session.step();
-      } else if (action == "reset") {
-        playing = false;
-        session.reset();
-      } else {
-        throw StudioError(400, "action: expected play, pause, step or reset");
-      }
-    } else if (body.contains("run_until")) {
-      playing = false;
-      session.runUntil(number("run_until"));
-    } else if (body.contains("seek")) {
-      playing = false;
-      session.seek(number("seek"));
-    } else {
-      throw StudioError(400, "expected action, run_until or seek");
-    }
-    reply(res, 200, stateJson());
-  }));
+  server.Post(
+      "/api/control", guarded([&](const httplib::Request& req, httplib::Response& res) {
+        json body = parseBody(req);
+        if (body.is_string()) body = {{"action", body}};
+        if (!body.is_object() || body.empty() || (body.size() > 1 && !(body.size() == 2 && body.contains("rate"))))
+          throw StudioError(
+              400, R"(expected one of {"action": "play"|"pause"|"step"|"reset"}, {"run_until": t}, {"seek": t})");
+        const auto number = [&](const char* key) {
+          if (!body[key].is_number()) throw StudioError(400, std::string(key) + ": expected a time (a number >= 0)");
+          return body[key].get<double>();
+        };
+        if (body.contains("action")) {
+          const std::string action = body["action"].is_string() ? body["action"].get<std::string>() : "";
+          if (action == "play") {
+            const json requested = body.value("rate", json(0.0));
+            if (!requested.is_number() || requested.get<double>() < 0 || requested.get<double>() > 1000)
+              throw StudioError(400, "rate: expected cycles per second, 0 (as fast as they run) to 1000");
+            rate = requested.get<double>();
+            playing = true;
+            wake.notify_all();
+          } else if (action == "pause") {
+            playing = false;
+          } else if (action == "step") {
+            playing = false;
+            session.step();
+          } else if (action == "reset") {
+            playing = false;
+            session.reset();
+          } else {
+            throw StudioError(400, "action: expected play, pause, step or reset");
+          }
+        } else if (body.contains("run_until")) {
+          playing = false;
+          session.runUntil(number("run_until"));
+        } else if (body.contains("seek")) {
+          playing = false;
+          session.seek(number("seek"));
+        } else {
+          throw StudioError(400, "expected action, run_until or seek");
+        }
+        reply(res, 200, stateJson());
+      }));
 
   server.Post("/api/edit", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    session.edit(parseBody(req));
-    reply(res, 200, stateJson());
-  }));
+                session.edit(parseBody(req));
+                reply(res, 200, stateJson());
+              }));
 
-  server.Post("/api/save", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    const json body = parseBody(req);
-    if (!body.is_object() || !body.contains("name") || !body["name"].is_string())
-      throw StudioError(400, R"(expected {"name": "asset-name", "overwrite": false})");
-    const bool overwrite = body.value("overwrite", false);
-    const SaveResult saved = session.save(body["name"].get<std::string>(), overwrite);
-    spdlog::info("studio: saved {} at time {}", saved.path.string(), saved.time);
-    reply(res, 200, {{"path", saved.path.string()}, {"time", saved.time}, {"preset_hash", saved.preset_hash}});
-  }));
+  server.Post(
+      "/api/save", guarded([&](const httplib::Request& req, httplib::Response& res) {
+        const json body = parseBody(req);
+        if (!body.is_object() || !body.contains("name") || !body["name"].is_string())
+          throw StudioError(400, R"(expected {"name": "asset-name", "overwrite": false})");
+        const bool overwrite = body.value("overwrite", false);
+        const SaveResult saved = session.save(body["name"].get<std::string>(), overwrite);
+        spdlog::info("studio: saved {} at time {}", saved.path.string(), saved.time);
+        reply(res, 200, {{"path", saved.path.string()}, {"time", saved.time}, {"preset_hash", saved.preset_hash}});
+      }));
 
   server.Get("/api/rock.vdb", guarded([&](const httplib::Request&, httplib::Response& res) {
-    res.set_content(session.rockVdb(), "application/octet-stream");
-  }));
+               res.set_content(session.rockVdb(), "application/octet-stream");
+             }));
 
   server.Get("/api/mesh", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    const std::string name = req.has_param("palette") ? req.get_param_value("palette") : "natural";
-    PreviewPalette palette;
-    if (name == "natural")
-      palette = PreviewPalette::Natural;
-    else if (name == "debug" || name == "durability")
-      palette = PreviewPalette::Durability;
-    else if (name == "curvature")
-      palette = PreviewPalette::Curvature;
-    else
-      throw StudioError(400, "palette: expected natural, debug or curvature");
-    auto& cached = mesh_cache[int(palette)];
-    if (!cached.second || cached.first != session.rockVersion())
-      cached = {session.rockVersion(), std::make_shared<const std::string>(session.previewMesh(palette))};
-    res.set_header("X-Mesh-Version", std::to_string(cached.first));
-    res.set_content(*cached.second, "application/octet-stream");
-  }));
+               const std::string name = req.has_param("palette") ? req.get_param_value("palette") : "natural";
+               PreviewPalette palette;
+               if (name == "natural")
+                 palette = PreviewPalette::Natural;
+               else if (name == "debug" || name == "durability")
+                 palette = PreviewPalette::Durability;
+               else if (name == "curvature")
+                 palette = PreviewPalette::Curvature;
+               else
+                 throw StudioError(400, "palette: expected natural, debug or curvature");
+               auto& cached = mesh_cache[int(palette)];
+               if (!cached.second || cached.first != session.rockVersion())
+                 cached = {session.rockVersion(), std::make_shared<const std::string>(session.previewMesh(palette))};
+               res.set_header("X-Mesh-Version", std::to_string(cached.first));
+               res.set_content(*cached.second, "application/octet-stream");
+             }));
 
   server.Post("/api/bake", guarded([&](const httplib::Request& req, httplib::Response& res) {
-    if (!req.body.empty()) parseBody(req);
-    if (bake.state == "running") throw StudioError(409, "a final bake is already running");
-    Preset preset = session.finalPreset();
-    ResolvedShape shape = readInputs(preset);
-    if (bake_thread.joinable()) bake_thread.join();
-    bake = {"running", 0.0, "starting", (options.out_dir / preset.name).string()};
-    bake_cancel = false;
-    bake_thread = std::thread([&, preset = std::move(preset), shape = std::move(shape)] {
-      BakeOptions bake_options;
-      bake_options.out_dir = options.out_dir;
-      bake_options.cancel = &bake_cancel;
-      bake_options.progress = [&](double fraction, const std::string& stage) {
-        std::lock_guard lock(mutex);
-        bake.progress = fraction;
-        bake.message = stage;
-      };
-      std::string state = "done", message;
-      try {
-        const BakeSummary summary = bakeAsset(preset, shape, bake_options);
-        message = fmt::format("{} cycles in {:.1f} s → {}", summary.cycles, summary.seconds, summary.asset_dir.string());
-      } catch (const std::exception& e) {
-        state = "failed";
-        message = e.what();
-      }
-      std::lock_guard lock(mutex);
-      bake.state = state;
-      bake.message = message;
-      if (state == "done") bake.progress = 1.0;
-    });
-    reply(res, 202, {{"asset_dir", bake.asset_dir}});
-  }));
+                if (!req.body.empty()) parseBody(req);
+                if (bake.state == "running") throw StudioError(409, "a final bake is already running");
+                Preset preset = session.finalPreset();
+                ResolvedShape shape = readInputs(preset);
+                if (bake_thread.joinable()) bake_thread.join();
+                bake = {"running", 0.0, "starting", (options.out_dir / preset.name).string()};
+                bake_cancel = false;
+                bake_thread = std::thread([&, preset = std::move(preset), shape = std::move(shape)] {
+                  BakeOptions bake_options;
+                  bake_options.out_dir = options.out_dir;
+                  bake_options.cancel = &bake_cancel;
+                  bake_options.progress = [&](double fraction, const std::string& stage) {
+                    std::lock_guard lock(mutex);
+                    bake.progress = fraction;
+                    bake.message = stage;
+                  };
+                  std::string state = "done", message;
+                  try {
+                    const BakeSummary summary = bakeAsset(preset, shape, bake_options);
+                    message = fmt::format("{} cycles in {:.1f} s → {}", summary.cycles, summary.seconds,
+                                          summary.asset_dir.string());
+                  } catch (const std::exception& e) {
+                    state = "failed";
+                    message = e.what();
+                  }
+                  std::lock_guard lock(mutex);
+                  bake.state = state;
+                  bake.message = message;
+                  if (state == "done") bake.progress = 1.0;
+                });
+                reply(res, 202, {{"asset_dir", bake.asset_dir}});
+              }));
 
   // The page and its pinned JavaScript; nothing else.
   server.Get("/", [&](const httplib::Request&, httplib::Response& res) { serveFile(res, web_root, "index.html"); });
-  server.Get(R"(/(studio\.js|studio\.css))", [&](const httplib::Request& req, httplib::Response& res) {
-    serveFile(res, web_root, req.matches[1]);
-  });
+  server.Get(R"(/(studio\.js|studio\.css))",
+             [&](const httplib::Request& req, httplib::Response& res) { serveFile(res, web_root, req.matches[1]); });
   server.Get(R"(/vendor/three/((build|examples/jsm)/.+))", [&](const httplib::Request& req, httplib::Response& res) {
     if (!serveFile(res, three_root, req.matches[1])) fail(res, 404, "not found: " + req.path);
   });
@@ -347,9 +351,10 @@ int runStudio(const StudioOptions& options) {
   runner.join();
   if (bake_thread.joinable()) bake_thread.join();
   if (port <= 0)
-    throw std::runtime_error(fmt::format("cannot listen on {}:{} (in use, or not an address of this machine); "
-                                         "try another --port or --port 0",
-                                         options.host, options.port));
+    throw std::runtime_error(
+        fmt::format("cannot listen on {}:{} (in use, or not an address of this machine); "
+                    "try another --port or --port 0",
+                    options.host, options.port));
   if (!listened && !server.is_running()) spdlog::info("studio: stopped");
   return 0;
 }

@@ -11,9 +11,9 @@ namespace rockbake {
 
 struct StudioOptions {
   std::filesystem::path preset;
-  std::string host = "127.0.0.1";  // only this machine unless told otherwise
-  int port = 8631;                 // 0: any free port
-  int resolution = 64;             // preview resolution (grid.resolution while in the studio)
+  std::string host = "127.0.0.1";         // only this machine unless told otherwise
+  int port = 8631;                        // 0: any free port
+  int resolution = 64;                    // preview resolution (grid.resolution while in the studio)
   std::filesystem::path out_dir = "out";  // where bake final writes OUT/<name>/
   std::filesystem::path web_root;         // the page: studio/ of the source tree
 };

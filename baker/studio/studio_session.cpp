@@ -233,8 +233,8 @@ void StudioSession::edit(const json& part) {
                                      ": only the graph (points, noise) can be edited in the studio; edit the "
                                      "preset file for the rest");
       set("durability.points", value["points"]);
-      set("durability.noise", value.value("noise", json::array()).is_null() ? json::array()
-                                                                             : value.value("noise", json::array()));
+      set("durability.noise",
+          value.value("noise", json::array()).is_null() ? json::array() : value.value("noise", json::array()));
     } else if (key == "bubbles" || key == "response") {
       set(key, value);
     } else {

@@ -54,10 +54,10 @@ class StudioSession {
   StudioSession(const std::filesystem::path& preset_file, int resolution);
   ~StudioSession();
 
-  CycleStats step();    // one cycle (a no-op at the simulation's hard end)
-  bool atEnd() const;   // the preset's time reached, or its `until`: where play stops
-  bool finished() const;  // nothing more can run (`until` reached)
-  void reset();         // back to time 0, keeping the edits
+  CycleStats step();           // one cycle (a no-op at the simulation's hard end)
+  bool atEnd() const;          // the preset's time reached, or its `until`: where play stops
+  bool finished() const;       // nothing more can run (`until` reached)
+  void reset();                // back to time 0, keeping the edits
   void runUntil(double time);  // forward, or seek back first; rounds up to a whole cycle
   void seek(double time);      // restore the nearest checkpoint at or before, re-simulate to it
 
@@ -104,7 +104,7 @@ class StudioSession {
   };
   std::vector<HistoryEntry> history_;  // per cycle run on this branch
   std::size_t initial_rock_ = 0;
-  int end_cycle_ = 1;  // the preset's time (or cycles) at the studio's voxel size
+  int end_cycle_ = 1;               // the preset's time (or cycles) at the studio's voxel size
   std::uint64_t rock_version_ = 0;  // changes whenever the rock does (the page refetches the mesh)
 };
 
