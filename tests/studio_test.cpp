@@ -162,7 +162,7 @@ std::string bakedVdb(const std::filesystem::path& file, int resolution, const Te
 TEST(StudioSession, EditsSeeksAndABranchSaveAPresetThatBakesToTheSameRock) {
   TempDir dir;
   const auto file = goblinFolder(dir);
-  StudioSession studio(file, 20);
+  StudioSession studio(file, 24);
   EXPECT_EQ(studio.cycle(), 0);
   const double h = studio.h();
   studio.edit({{"durability", {{"points", {{0.0, 2.0}, {0.5, 0.5}, {1.0, 1.5}}}}}});
@@ -194,14 +194,14 @@ TEST(StudioSession, EditsSeeksAndABranchSaveAPresetThatBakesToTheSameRock) {
   const SaveResult saved = studio.save("goblin-branch", false);
   EXPECT_EQ(saved.path, dir.path() / "goblin-branch.yaml");
   EXPECT_DOUBLE_EQ(saved.time, 8 * h);
-  EXPECT_EQ(bakedVdb(saved.path, 20, dir), studio.rockVdb());
+  EXPECT_EQ(bakedVdb(saved.path, 24, dir), studio.rockVdb());
   EXPECT_EQ(loadPreset(saved.path).name, "goblin-branch");
 }
 
 TEST(StudioSession, RefusesEditsAndSavesItCannotHonour) {
   TempDir dir;
   const auto file = goblinFolder(dir);
-  StudioSession studio(file, 20);
+  StudioSession studio(file, 24);
   const auto status = [&](auto&& call) {
     try {
       call();
@@ -220,7 +220,7 @@ TEST(StudioSession, RefusesEditsAndSavesItCannotHonour) {
   EXPECT_EQ(status([&] { studio.save("base", true); }), 409);
   EXPECT_EQ(status([&] { studio.seek(-1); }), 400);
   EXPECT_EQ(status([&] {
-              studio.edit({{"bubbles", {{{"up_to", 1.0}, {"bubble", {{"sphere", {{"radius", 2.0}}}}}}}}});
+              studio.edit({{"bubbles", {{{"up_to", 1.0}, {"bubble", {{"sphere", {{"radius", 1.9}}}}}}}}});
             }),
             400);
   EXPECT_EQ(studio.cycle(), 1);
