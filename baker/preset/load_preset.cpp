@@ -211,6 +211,65 @@ DurabilityGraph readGraph(const Field& f) {
   return graph;
 }
 
+// Runs one part of the validation: a problem is recorded (with where its reading stopped) and the
+// next part goes on, so one run lists every problem; loading then reports the first.
+template <typename Read>
+void validatePart(const Source& source, Read&& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    source.reads->failed.push_back(e.keyPath());
+    source.problems->push_back(e);
+  }
+}
+
+// The bubble graph: bands bottom to top, the last reaching 1.
+std::vector<BubbleBand> readBands(const Field& bands, double h, const Source& source) {
+  std::vector<BubbleBand> out;
+  if (bands.size() == 0) bands.fail("needs at least one band");
+  // Band by band, so that linting lists the problems of every band.
+  for (std::size_t i = 0; i < bands.size(); ++i)
+    validatePart(source, [&] {
+      const Field b = bands.item(i);
+      b.expectMap();
+      BubbleBand band;
+      if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
+      band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
+      if (!out.empty() && band.up_to <= out.back().up_to)
+        b.at("up_to").fail("bands go bottom to top: up_to must increase");
+      if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
+      band.bubble = readBubble(b.at("bubble"));
+      checkBubbleSize(band.bubble, b.at("bubble"), h);
+      if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
+      if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
+      out.push_back(band);
+    });
+  if (out.size() == bands.size() && out.back().up_to != 1.0)
+    bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
+  return out;
+}
+
+// The decimation response: power, threshold or curve.
+ResponseParams readResponse(const Field& r) {
+  const std::string kind = r.oneOf({"power", "threshold", "curve"});
+  if (kind == "power") return {ResponseParams::Kind::Power, r.at("power").positive(), {}};
+  if (kind == "threshold")
+    return {ResponseParams::Kind::Threshold, r.at("threshold").numberIn(0.0, 1.0, false, true), {}};
+  ResponseParams response;
+  const Field c = r.at("curve");
+  response.kind = ResponseParams::Kind::Curve;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Field pt = c.item(i);
+    if (pt.size() != 2) pt.fail("expected [x, y]");
+    const double x = pt.item(0).numberIn(0.0, 1.0), y = pt.item(1).numberIn(0.0, 1.0);
+    if (!response.curve.empty() && x <= response.curve.back()[0]) pt.item(0).fail("x must increase along the curve");
+    response.curve.push_back({x, y});
+  }
+  if (response.curve.size() < 2 || response.curve.front()[0] != 0.0 || response.curve.back()[0] != 1.0)
+    c.fail("the curve must start at x = 0 and end at x = 1");
+  return response;
+}
+
 void readShape(const Field& f, Preset& p) {
   f.has("center");  // asked first, so that it is known even when the kind is missing
   const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"});
@@ -256,18 +315,6 @@ void readShape(const Field& f, Preset& p) {
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
-}
-
-// Runs one part of the validation. Loading stops at the first problem; linting (source.problems set)
-// records it and goes on with the next part, so one run lists every problem.
-template <typename Read>
-void validatePart(const Source& source, Read&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    source.reads->failed.push_back(e.keyPath());
-    source.problems->push_back(e);
-  }
 }
 
 // Reads every part of the schema; each problem goes to source.problems (unknown keys first,
@@ -326,9 +373,14 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
       for (std::size_t i = 0; i < ks.size(); ++i) {
         const Field k = ks.item(i);
         DurabilityKeyframe keyframe;
-        keyframe.graph = readGraph(k);
+        const DurabilityGraph graph = readGraph(k);
         if (!k.has("at")) k.fail("a keyframe needs 'at' (the simulation time it takes effect)");
-        if (!k.has("points")) k.fail("a keyframe needs 'points' (the graph it switches to)");
+        if (!k.has("points") && !k.has("bubbles") && !k.has("response"))
+          k.fail("a keyframe needs 'points' (the graph it switches to), 'bubbles' or 'response'");
+        if (k.has("noise") && !k.has("points")) k.at("noise").fail("noise needs the keyframe's 'points'");
+        if (k.has("points")) keyframe.graph = graph;
+        if (k.has("bubbles")) keyframe.bubbles = readBands(k.at("bubbles"), h, source);
+        if (k.has("response")) keyframe.response = readResponse(k.at("response"));
         keyframe.at = k.at("at").numberIn(0.0, 1e9);
         if (!p.durability.keyframes.empty() && keyframe.at < p.durability.keyframes.back().at)
           k.at("at").fail("keyframes must be in time order");
@@ -339,27 +391,7 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
 
   validatePart(source, [&] {
     if (!root.has("bubbles")) return;
-    const Field bands = root.at("bubbles");
-    if (bands.size() == 0) bands.fail("needs at least one band");
-    // Band by band, so that linting lists the problems of every band.
-    for (std::size_t i = 0; i < bands.size(); ++i)
-      validatePart(source, [&] {
-        const Field b = bands.item(i);
-        b.expectMap();
-        BubbleBand band;
-        if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
-        band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
-        if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
-          b.at("up_to").fail("bands go bottom to top: up_to must increase");
-        if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
-        band.bubble = readBubble(b.at("bubble"));
-        checkBubbleSize(band.bubble, b.at("bubble"), h);
-        if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
-        if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
-        p.bubbles.push_back(band);
-      });
-    if (p.bubbles.size() == bands.size() && p.bubbles.back().up_to != 1.0)
-      bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
+    p.bubbles = readBands(root.at("bubbles"), h, source);
   });
   if (!root.has("bubbles")) {
     // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default,
@@ -374,26 +406,7 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
 
   validatePart(source, [&] {
     if (!root.has("response")) return;
-    const Field r = root.at("response");
-    const std::string kind = r.oneOf({"power", "threshold", "curve"});
-    if (kind == "power") {
-      p.response = {ResponseParams::Kind::Power, r.at("power").positive(), {}};
-    } else if (kind == "threshold") {
-      p.response = {ResponseParams::Kind::Threshold, r.at("threshold").numberIn(0.0, 1.0, false, true), {}};
-    } else {
-      const Field c = r.at("curve");
-      p.response.kind = ResponseParams::Kind::Curve;
-      for (std::size_t i = 0; i < c.size(); ++i) {
-        const Field pt = c.item(i);
-        if (pt.size() != 2) pt.fail("expected [x, y]");
-        const double x = pt.item(0).numberIn(0.0, 1.0), y = pt.item(1).numberIn(0.0, 1.0);
-        if (!p.response.curve.empty() && x <= p.response.curve.back()[0])
-          pt.item(0).fail("x must increase along the curve");
-        p.response.curve.push_back({x, y});
-      }
-      if (p.response.curve.size() < 2 || p.response.curve.front()[0] != 0.0 || p.response.curve.back()[0] != 1.0)
-        c.fail("the curve must start at x = 0 and end at x = 1");
-    }
+    p.response = readResponse(root.at("response"));
   });
 
   validatePart(source, [&] {

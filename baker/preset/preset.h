@@ -76,14 +76,6 @@ struct DurabilityGraph {
   // One entry per segment (points.size() - 1 entries) or empty for none.
   std::vector<std::optional<NoiseParams>> noise;
 };
-struct DurabilityKeyframe {
-  double at = 0.0;  // simulation time (world units of time), >= 0
-  DurabilityGraph graph;
-};
-struct DurabilityParams {
-  DurabilityGraph graph;
-  std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
-};
 
 // ---- bubbles (SPEC §2.3) ----
 struct BubbleSpec {
@@ -112,6 +104,20 @@ struct ResponseParams {
   Kind kind = Kind::Power;
   double value = 1.0;                        // power p > 0, or threshold t in [0, 1)
   std::vector<std::array<double, 2>> curve;  // Curve: x strictly increasing from 0 to 1
+};
+
+// ---- keyframes (SPEC §2.4) ----
+// An edit during the simulation (SPEC §2.4, §7): from time `at` on, each part
+// it carries replaces the one in effect. At least one part is set.
+struct DurabilityKeyframe {
+  double at = 0.0;                                 // simulation time (world units of time), >= 0
+  std::optional<DurabilityGraph> graph;            // points and noise; durability reassigned to standing rock
+  std::optional<std::vector<BubbleBand>> bubbles;  // the bubble graph
+  std::optional<ResponseParams> response;          // the decimation response
+};
+struct DurabilityParams {
+  DurabilityGraph graph;
+  std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
 };
 
 // ---- rockfall and colluvium (SPEC §2.6, §2.7) ----

@@ -35,6 +35,28 @@ json graphToJson(const DurabilityGraph& g) {
   return out;
 }
 
+json bandsToJson(const std::vector<BubbleBand>& bubbles) {
+  json bands = json::array();
+  for (const auto& b : bubbles)
+    bands.push_back({{"up_to", b.up_to},
+                     {"bubble", bubbleToJson(b.bubble)},
+                     {"spheroidal", b.spheroidal},
+                     {"cavernous", b.cavernous}});
+  return bands;
+}
+
+json responseToJson(const ResponseParams& r) {
+  switch (r.kind) {
+    case ResponseParams::Kind::Power:
+      return {{"power", r.value}};
+    case ResponseParams::Kind::Threshold:
+      return {{"threshold", r.value}};
+    case ResponseParams::Kind::Curve:
+      return {{"curve", r.curve}};
+  }
+  return nullptr;
+}
+
 json shapeToJson(const ShapeParams& shape) {
   struct Visitor {
     json operator()(const BoxShape& b) const { return {{"box", {{"size", b.size}}}}; }
@@ -94,30 +116,17 @@ json presetToJson(const Preset& p) {
   json durability = graphToJson(p.durability.graph);
   json keyframes = json::array();
   for (const auto& k : p.durability.keyframes) {
-    json kf = graphToJson(k.graph);
+    // Only the parts the keyframe carries (a graph-only keyframe reads as it always has).
+    json kf = k.graph ? graphToJson(*k.graph) : json::object();
     kf["at"] = k.at;
+    if (k.bubbles) kf["bubbles"] = bandsToJson(*k.bubbles);
+    if (k.response) kf["response"] = responseToJson(*k.response);
     keyframes.push_back(kf);
   }
   durability["keyframes"] = keyframes;
   out["durability"] = durability;
-  json bands = json::array();
-  for (const auto& b : p.bubbles)
-    bands.push_back({{"up_to", b.up_to},
-                     {"bubble", bubbleToJson(b.bubble)},
-                     {"spheroidal", b.spheroidal},
-                     {"cavernous", b.cavernous}});
-  out["bubbles"] = bands;
-  switch (p.response.kind) {
-    case ResponseParams::Kind::Power:
-      out["response"] = {{"power", p.response.value}};
-      break;
-    case ResponseParams::Kind::Threshold:
-      out["response"] = {{"threshold", p.response.value}};
-      break;
-    case ResponseParams::Kind::Curve:
-      out["response"] = {{"curve", p.response.curve}};
-      break;
-  }
+  out["bubbles"] = bandsToJson(p.bubbles);
+  out["response"] = responseToJson(p.response);
   out["rockfall"] = {{"mode", rockfallName(p.rockfall.mode)}};
   out["colluvium"] = {
       {"yield", p.colluvium.yield}, {"talus_angle", p.colluvium.talus_angle}, {"removal", p.colluvium.removal}};
