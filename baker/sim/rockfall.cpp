@@ -266,6 +266,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
         rock.material[to] = crumble ? Material::Colluvium : rock.material[c];
         rock.integrity[to] = rock.integrity[c];
         rock.durability[to] = crumble ? 0.f : rock.durability[c];
+        if (!rock.rind.empty()) rock.rind[to] = crumble ? 0 : rock.rind[c];
         rock.material[c] = Material::Air;
         rock.durability[c] = 0.f;
         outcome.changed.push_back(c);

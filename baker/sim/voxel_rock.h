@@ -63,6 +63,10 @@ struct VoxelRock {
   std::vector<Material> material;  // cellCount()
   std::vector<float> integrity;    // cellCount(); 1 at the start, rock voxels only meaningful
   std::vector<float> durability;   // cellCount(); > 0 on rock voxels, 0 elsewhere
+  // Empty without a rind (durability.rind); else cellCount(): the part
+  // (0..255) of each voxel within the rind's depth of the initial surface.
+  // Falls with its rock; keyframes re-read it.
+  std::vector<std::uint8_t> rind;
 
   std::size_t count(Material m) const;
 };

@@ -144,6 +144,7 @@ struct WeatheringSimulation::State {
             [this](int x, int y, int z) { return rock.material[rock.layout.index(x, y, z)] == Material::Colluvium; }),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
+        geology(preset.durability, preset.grid.size, preset.seed),
         planned_cycles(plannedCycles(preset, rock.layout.h)),
         initial_rock(rock.count(Material::Rock)),
         rock_count(initial_rock) {}
@@ -167,6 +168,7 @@ struct WeatheringSimulation::State {
   TrackedCells<CellPredicate> colluvium;  // every colluvium voxel
   RockfallSolver rockfall;
   ColluviumModel colluvium_model;
+  Geology geology;  // the rock's structure, which every keyframe's graph is read through
   int planned_cycles;
   int cycle = 0;
   std::size_t initial_rock, rock_count;
@@ -206,7 +208,8 @@ CycleStats WeatheringSimulation::step() {
   const auto& keyframes = preset.durability.keyframes;
   const double start_time = st.cycle * g.h;
   while (st.next_keyframe < keyframes.size() && keyframes[st.next_keyframe].at <= start_time + 1e-9 * g.h) {
-    assignDurability(rock, DurabilityField(keyframes[st.next_keyframe].graph, preset.seed, st.next_keyframe + 1));
+    assignDurability(rock, DurabilityField(keyframes[st.next_keyframe].graph, preset.seed, st.next_keyframe + 1),
+                     st.geology);
     ++st.next_keyframe;
   }
 
