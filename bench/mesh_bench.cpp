@@ -15,10 +15,12 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "io/glb_file.h"
-#include "io/obj_file.h"
-#include "io/ply_file.h"
-#include "io/vdb_file.h"
+#include "core/colour.h"
+#include "core/mesh_checks.h"
+#include "export/glb_file.h"
+#include "export/obj_file.h"
+#include "export/ply_file.h"
+#include "export/vdb_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/simplify_lods.h"
@@ -69,7 +71,7 @@ const Asset& asset() {
     Asset a;
     a.dir = std::filesystem::temp_directory_path() / ("rockbake-mesh-bench-" + std::to_string(::getpid()));
     const auto start = std::chrono::steady_clock::now();
-    a.rock = weatherRock(buildInitialRock(a.preset), a.preset).rock;
+    a.rock = weatherRock(buildInitialRock(resolveShape(a.preset), a.preset), a.preset).rock;
     writeRockVdb(a.rock, a.dir / "rock.vdb");
     a.simulate_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return a;

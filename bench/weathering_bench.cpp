@@ -51,7 +51,7 @@ struct WeatheredRock {
 const WeatheredRock& weatheredCube() {
   static const WeatheredRock weathered = [] {
     const Preset p = cube(96, 96, 6.0);
-    WeatheringSimulation sim(buildInitialRock(p), p);
+    WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
     for (int i = 0; i < 20; ++i) sim.step();
     WeatheredRock w{sim.release(), {}};
     const GridLayout& g = w.rock.layout;
@@ -103,7 +103,7 @@ void BM_AlphaRows(benchmark::State& state) {
 // Times cycles of a simulation started fresh for each batch of iterations.
 void timeCycles(benchmark::State& state, const Preset& p) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(1)));
-  const VoxelRock initial = buildInitialRock(p);
+  const VoxelRock initial = buildInitialRock(resolveShape(p), p);
   WeatheringSimulation sim(initial, p);
   for (int i = 0; i < 5; ++i) sim.step();  // past the first, atypical cycles
   std::size_t exposed = 0;
@@ -122,7 +122,7 @@ void BM_CycleWithDebris(benchmark::State& state) {
   p.bubbles[0].cavernous = 0.5;
   p.rockfall.mode = RockfallMode::Drop;
   p.colluvium = {0.5, 35.0, 0.02};
-  WeatheringSimulation sim(buildInitialRock(p), p);
+  WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
   for (int i = 0; i < 5; ++i) sim.step();
   double curvature = 0, colluvium = 0, rockfall = 0;
   for (auto _ : state) {

@@ -118,9 +118,25 @@ TEST(Cli, BakeRendersAndRenderReRendersTheAssetFolder) {
   const auto out = dir.path() / "out";
   const auto baked = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string()});
   ASSERT_EQ(baked.exit_status, 0) << baked.output;
-  for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "render.exr", "render.png", "scene.pov"})
+  for (const char* file : {"rock.ply", "rock.glb", "render.exr", "render.png", "scene.pov"})
     EXPECT_TRUE(fs::is_regular_file(out / "small" / file)) << file;
   EXPECT_FALSE(fs::exists(out / "small" / "rock.obj"));  // not in export:
+  EXPECT_FALSE(fs::exists(out / "small" / "rock.vdb"));  // nor this
+
+  // One fingerprint of the preset: the render's header carries the manifest's
+  // preset_sha256, and a copy of the preset baked from another folder renders
+  // the same bytes.
+  const auto manifest = nlohmann::json::parse(readBytes(out / "small" / "manifest.json"));
+  const std::string fingerprint = manifest["inputs"]["preset_sha256"].get<std::string>();
+  EXPECT_EQ(fingerprint.size(), 64u);
+  EXPECT_NE(readBytes(out / "small" / "render.exr").find(fingerprint), std::string::npos);
+  fs::create_directories(dir.path() / "elsewhere" / "deeper");
+  fs::copy_file(dir.path() / "small.yaml", dir.path() / "elsewhere" / "deeper" / "small.yaml");
+  const auto moved = runRockbake({"bake", (dir.path() / "elsewhere" / "deeper" / "small.yaml").string(), "-o",
+                                  (dir.path() / "elsewhere" / "out").string()});
+  ASSERT_EQ(moved.exit_status, 0) << moved.output;
+  EXPECT_EQ(readBytes(dir.path() / "elsewhere" / "out" / "small" / "render.exr"),
+            readBytes(out / "small" / "render.exr"));
   const auto stats = nlohmann::json::parse(readBytes(out / "small" / "stats.json"));
   for (const char* stage : {"mesh_extract", "mesh_subdivide", "export", "render"})
     EXPECT_GT(stats["stages"][stage].get<double>(), 0.0) << stage;
@@ -130,12 +146,18 @@ TEST(Cli, BakeRendersAndRenderReRendersTheAssetFolder) {
   ASSERT_EQ(again.exit_status, 0) << again.output;
   EXPECT_NE(readBytes(out / "small" / "render.exr"), still) << "the debug template should render differently";
 
-  // --no-render stops after the meshes; --no-mesh after the VDB.
+  // --no-render stops after the meshes; --no-mesh after the VDB, which it
+  // writes whatever export: lists (it is all such a bake gives).
   const auto no_render =
       runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "b").string(), "--no-render"});
   ASSERT_EQ(no_render.exit_status, 0) << no_render.output;
   EXPECT_TRUE(fs::exists(dir.path() / "b" / "small" / "rock.ply"));
   EXPECT_FALSE(fs::exists(dir.path() / "b" / "small" / "render.exr"));
+  const auto no_mesh =
+      runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "c").string(), "--no-mesh"});
+  ASSERT_EQ(no_mesh.exit_status, 0) << no_mesh.output;
+  EXPECT_TRUE(fs::exists(dir.path() / "c" / "small" / "rock.vdb"));
+  EXPECT_FALSE(fs::exists(dir.path() / "c" / "small" / "rock.ply"));
   EXPECT_EQ(runRockbake({"render", dir.path().string()}).exit_status, 2);
 }
 

@@ -3,30 +3,17 @@
 
 #include <random>
 
+#include "core/hash.h"
 #include "sim/bubble.h"
 #include "sim/curvature.h"
-#include "util/hash.h"
+#include "test_support.h"
 
 namespace rockbake {
 namespace {
 
-VoxelRock randomRock(int nx, int ny, int nz, bool ground, double fill, std::uint64_t seed) {
-  VoxelRock rock;
-  rock.layout.nx = nx, rock.layout.ny = ny, rock.layout.nz = nz;
-  rock.layout.ground = ground;
-  rock.material.resize(rock.layout.cellCount());
-  for (std::size_t i = 0; i < rock.material.size(); ++i) {
-    const double u = unitInterval(counterHash(seed, purposeId("test-fill"), 0, i));
-    rock.material[i] = u < fill * 0.8 ? Material::Rock : (u < fill ? Material::Colluvium : Material::Air);
-  }
-  rock.integrity.assign(rock.material.size(), 1.f);
-  rock.durability.assign(rock.material.size(), 1.f);
-  return rock;
-}
-
 // A solid block filling [x0, x1) × [y0, y1) × [z0, z1) of an nx × ny × nz grid.
 VoxelRock blockRock(int n, int lo, int hi) {
-  VoxelRock rock = randomRock(n, n, n, false, 0.0, 0);
+  VoxelRock rock = test::randomRock(n, n, n, 0, 0.0, false);
   for (int z = lo; z < hi; ++z)
     for (int y = lo; y < hi; ++y)
       for (int x = lo; x < hi; ++x) rock.material[rock.layout.index(x, y, z)] = Material::Rock;
@@ -81,7 +68,7 @@ TEST(Bubble, CollectionWeightsAreNormalisedAndNestedCollectionsFlatten) {
 TEST(AirField, CountsEqualTheNaiveLoopForEveryBubbleKind) {
   for (bool ground : {true, false}) {
     for (double fill : {0.3, 0.7}) {
-      const VoxelRock rock = randomRock(23, 17, 19, ground, fill, ground ? 11 : 12);
+      const VoxelRock rock = test::randomRock(23, 17, 19, ground ? 11 : 12, fill, ground);
       for (const auto& [name, bubble] : allBubbleKinds()) {
         const AirField field(rock, std::max(1, bubble.reach));
         const auto bound = field.bind(bubble);
@@ -97,7 +84,7 @@ TEST(AirField, CountsEqualTheNaiveLoopForEveryBubbleKind) {
 }
 
 TEST(AirField, CountsStayExactAfterCellsChange) {
-  VoxelRock rock = randomRock(30, 12, 14, true, 0.5, 5);
+  VoxelRock rock = test::randomRock(30, 12, 14, 5, 0.5, true);
   const Bubble bubble = makeSphereBubble(4.5);
   AirField field(rock, bubble.reach);
   const auto bound = field.bind(bubble);

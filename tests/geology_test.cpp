@@ -7,13 +7,14 @@
 #include <deque>
 #include <numeric>
 
-#include "pipeline/library.h"
+#include "inputs/resolve_shape.h"
+#include "preset/library.h"
 #include "preset/load_preset.h"
 #include "sim/durability.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 #include "test_support.h"
-#include "util/error.h"
+#include "core/error.h"
 
 namespace rockbake {
 namespace {
@@ -25,7 +26,7 @@ bool isRock(const VoxelRock& rock, int x, int y, int z) {
 }
 
 VoxelRock initialRock(const Preset& p) {
-  return buildInitialRock(p);
+  return buildInitialRock(resolveShape(p), p);
 }
 VoxelRock weathered(const Preset& p) {
   return weatherRock(initialRock(p), p).rock;

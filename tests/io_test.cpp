@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "io/png_image.h"
-#include "io/vdb_file.h"
+#include "core/atomic_file.h"
+#include "core/png_image.h"
+#include "export/vdb_file.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -238,34 +238,14 @@ TEST(PngImage, TruncatedPngThrowsWithThePath) {
 // Sizes that are not multiples of 8, a solid 8³ block (it becomes a tile), and
 // a random mix elsewhere.
 VoxelRock randomRock(int nx, int ny, int nz, unsigned seed) {
-  VoxelRock rock;
-  GridLayout& g = rock.layout;
-  g.nx = nx;
-  g.ny = ny;
-  g.nz = nz;
-  g.margin = 2;
-  g.h = 0.125;
-  g.origin = {-1.25, -0.75, 0.0};
-  rock.material.assign(g.cellCount(), Material::Air);
-  rock.integrity.assign(g.cellCount(), 1.0f);
-  rock.durability.assign(g.cellCount(), 0.0f);
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<float> durability(0.1f, 3.0f);
-  for (int z = 0; z < nz; ++z) {
-    for (int y = 0; y < ny; ++y) {
-      for (int x = 0; x < nx; ++x) {
-        const std::size_t cell = g.index(x, y, z);
-        const bool solid = x >= 8 && x < 16 && y >= 8 && y < 16 && z >= 0 && z < 8;
-        const unsigned roll = random() % 100;
-        if (solid || roll < 45) {
-          rock.material[cell] = Material::Rock;
-          rock.durability[cell] = durability(random);
-        } else if (roll < 60) {
-          rock.material[cell] = Material::Colluvium;
-        }
+  VoxelRock rock = test::randomRock(nx, ny, nz, seed);
+  const GridLayout& g = rock.layout;
+  for (int z = 0; z < std::min(nz, 8); ++z)
+    for (int y = 8; y < std::min(ny, 16); ++y)
+      for (int x = 8; x < std::min(nx, 16); ++x) {
+        rock.material[g.index(x, y, z)] = Material::Rock;
+        rock.durability[g.index(x, y, z)] = 1.5f;
       }
-    }
-  }
   return rock;
 }
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <string>
 
-#include "io/mesh_reader.h"
+#include "inputs/mesh_reader.h"
 #include "pipeline/bake_asset.h"
 #include "test_support.h"
 

@@ -5,50 +5,19 @@
 #include <fstream>
 #include <numbers>
 
-#include "io/mesh_reader.h"
+#include "core/error.h"
+#include "core/mesh_checks.h"
+#include "inputs/mesh_reader.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "test_support.h"
-#include "util/error.h"
 
 namespace rockbake {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A unit-radius icosphere (subdivided `levels` times), outward-facing.
-TriangleMesh icosphere(int levels) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  TriangleMesh m;
-  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  const auto normalise = [](std::array<double, 3> p) {
-    const double l = std::hypot(p[0], p[1], p[2]);
-    return std::array<double, 3>{p[0] / l, p[1] / l, p[2] / l};
-  };
-  for (auto& p : m.positions) p = normalise(p);
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-    const auto mid = [&](std::uint32_t a, std::uint32_t b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      if (const auto it = middle.find(key); it != middle.end()) return it->second;
-      const auto& pa = m.positions[a];
-      const auto& pb = m.positions[b];
-      m.positions.push_back(normalise({pa[0] + pb[0], pa[1] + pb[1], pa[2] + pb[2]}));
-      return middle[key] = std::uint32_t(m.positions.size() - 1);
-    };
-    std::vector<std::array<std::uint32_t, 3>> finer;
-    for (const auto& [a, b, c] : m.triangles) {
-      const std::uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
-    }
-    m.triangles = finer;
-  }
-  return m;
-}
+using test::icosphere;
 
 void writeObj(const fs::path& file, const TriangleMesh& m, std::size_t skip_faces = 0) {
   std::ofstream out(file);
@@ -97,7 +66,7 @@ TEST(MeshShape, AVoxelizedSphereHasTheAnalyticVolume) {
   writeObj(dir.path() / "sphere.obj", icosphere(4));
   test::writeText(dir.path() / "p.yaml", blockoutPreset("sphere.obj", 1.2));
   const Preset p = loadPreset(dir.path() / "p.yaml");
-  const VoxelRock rock = buildInitialRock(p);
+  const VoxelRock rock = buildInitialRock(resolveShape(p), p);
   const double h = rock.layout.h;
   const double volume = double(rock.count(Material::Rock)) * h * h * h;
   const double analytic = 4.0 / 3.0 * std::numbers::pi * std::pow(1.2, 3);
@@ -118,7 +87,8 @@ TEST(MeshShape, ObjPlyAndStlGiveTheSameRock) {
   std::vector<std::size_t> counts;
   for (const char* file : {"s.obj", "s.stl", "s.ply"}) {
     test::writeText(dir.path() / "p.yaml", blockoutPreset(file, 1.0));
-    counts.push_back(buildInitialRock(loadPreset(dir.path() / "p.yaml")).count(Material::Rock));
+    const Preset p = loadPreset(dir.path() / "p.yaml");
+    counts.push_back(buildInitialRock(resolveShape(p), p).count(Material::Rock));
   }
   // The same shape; STL stores floats and the text formats 6 digits, so a
   // few voxels whose centres sit on the surface may differ.
@@ -132,7 +102,7 @@ TEST(MeshShape, AnOpenOrBrokenMeshIsRefusedWithAMessage) {
   writeObj(dir.path() / "open.obj", icosphere(2), 3);  // three faces missing
   test::writeText(dir.path() / "p.yaml", blockoutPreset("open.obj", 1.0));
   try {
-    loadPreset(dir.path() / "p.yaml");
+    resolveShape(loadPreset(dir.path() / "p.yaml"));
     FAIL() << "an open mesh was accepted";
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -143,7 +113,7 @@ TEST(MeshShape, AnOpenOrBrokenMeshIsRefusedWithAMessage) {
   test::writeText(dir.path() / "garbage.obj", "v 0 0 0\nf 1 2 3\n");
   test::writeText(dir.path() / "p.yaml", blockoutPreset("garbage.obj", 1.0));
   try {
-    loadPreset(dir.path() / "p.yaml");
+    resolveShape(loadPreset(dir.path() / "p.yaml"));
     FAIL() << "a mesh with bad indices was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("past the 1 vertices"), std::string::npos) << e.what();

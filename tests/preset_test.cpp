@@ -3,10 +3,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
+#include "pipeline/read_inputs.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
 #include "test_support.h"
-#include "util/error.h"
 
 namespace rockbake {
 namespace {
@@ -155,12 +156,25 @@ TEST(Preset, RejectsInconsistentPresets) {
             std::string::npos);
   EXPECT_NE(errorOf(head + "shape: {image: {path: missing.png, height: 1}}\ntime: 1\n").find("shape.image.path"),
             std::string::npos);
-  // A grid far beyond this machine's memory is refused before allocation.
-  EXPECT_NE(errorOf(head + box +
-                    "time: 1\ngrid: {size: [1, 1, 1], resolution: 2048}\n"
-                    "bubbles: [{up_to: 1, bubble: {sphere: {radius: 0.01}}}]\n")
-                .find("grid.resolution"),
-            std::string::npos);
+}
+
+TEST(Preset, AGridBeyondThisMachinesMemoryIsRefusedAtItsKey) {
+  // Valid as a preset; the bake's inputs check refuses it before allocating.
+  const Preset huge = parsePreset(
+      "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\ngrid: {size: [1, 1, 1], resolution: 2048}\n"
+      "bubbles: [{up_to: 1, bubble: {sphere: {radius: 0.01}}}]\n",
+      "dir/p.yaml");
+  try {
+    checkGridFitsInMemory(huge);
+    FAIL() << "a 2048³ grid was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("dir/p.yaml:5:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("grid.resolution"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("MiB"), std::string::npos) << e.what();
+  }
+  Preset fine = huge;
+  fine.grid.resolution = 32;
+  EXPECT_NO_THROW(checkGridFitsInMemory(fine));
 }
 
 TEST(Preset, PaletteColoursAreSrgbHexOrLists) {

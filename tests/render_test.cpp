@@ -20,9 +20,9 @@
 #include <string>
 #include <utility>
 
-#include "render/color.h"
 #include "render/exr_metadata.h"
 #include "render/povray.h"
+#include "render/preview.h"
 #include "render/render_asset.h"
 #include "render/scene.h"
 #include "test_support.h"
@@ -35,46 +35,17 @@ using Pos = std::array<float, 3>;
 
 // A subdivided icosphere about `c`, coloured per vertex by `color(position)`.
 SurfaceMesh icosphere(int levels, Pos c, float r, const std::function<Color(const Pos&)>& color) {
-  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<Pos> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
-                        {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
-  std::vector<std::array<std::uint32_t, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  auto norm = [](Pos p) {
-    const float l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    return Pos{p[0] / l, p[1] / l, p[2] / l};
-  };
-  for (auto& p : v) p = norm(p);
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mid;
-    auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-      const auto key = std::minmax(a, b);
-      const auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      v.push_back(norm({v[a][0] + v[b][0], v[a][1] + v[b][1], v[a][2] + v[b][2]}));
-      return mid[key] = std::uint32_t(v.size() - 1);
-    };
-    std::vector<std::array<std::uint32_t, 3>> next;
-    for (const auto& tri : f) {
-      const auto a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), cc = midpoint(tri[2], tri[0]);
-      next.push_back({tri[0], a, cc});
-      next.push_back({tri[1], b, a});
-      next.push_back({tri[2], cc, b});
-      next.push_back({a, b, cc});
-    }
-    f = std::move(next);
-  }
+  const TriangleMesh sphere = test::icosphere(levels);
   SurfaceMesh m;
   m.name = "rock";
-  for (const auto& n : v) {
+  for (const auto& d : sphere.positions) {
+    const Pos n{float(d[0]), float(d[1]), float(d[2])};
     const Pos p{c[0] + r * n[0], c[1] + r * n[1], c[2] + r * n[2]};
     m.positions.push_back(p);
     m.normals.push_back(n);
     m.colors.push_back(color(p));
   }
-  m.triangles = f;
+  m.triangles = sphere.triangles;
   return m;
 }
 

@@ -174,7 +174,7 @@ TEST(Rockfall, IsOffWithoutTheGround) {
   p.rockfall.mode = RockfallMode::Drop;
   p.colluvium.yield = 0.5;
   p.stop.cycles = 3;
-  const VoxelRock start = buildInitialRock(p);
+  const VoxelRock start = buildInitialRock(resolveShape(p), p);
   const WeatheringResult result = weatherRock(start, p);
   for (const auto& c : result.cycles) {
     EXPECT_EQ(c.fallen, 0u);
@@ -182,7 +182,7 @@ TEST(Rockfall, IsOffWithoutTheGround) {
   }
   // With the ground, the same block falls in the first cycle.
   p.grid.ground = true;
-  const WeatheringResult grounded = weatherRock(buildInitialRock(p), p);
+  const WeatheringResult grounded = weatherRock(buildInitialRock(resolveShape(p), p), p);
   EXPECT_GT(grounded.cycles.front().fallen, 900u);
   EXPECT_TRUE(nothingFloats(grounded.rock));
 }
@@ -210,7 +210,7 @@ TEST(Rockfall, NothingFloatsAfterAnyCycle) {
   for (std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     for (RockfallMode mode : {RockfallMode::Drop, RockfallMode::Crumble}) {
       const Preset p = neckPreset(seed, mode);
-      WeatheringSimulation sim(buildInitialRock(p), p);
+      WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
       while (!sim.finished()) {
         const CycleStats stats = sim.step();
         total_fallen += stats.fallen;
@@ -223,7 +223,7 @@ TEST(Rockfall, NothingFloatsAfterAnyCycle) {
 
 TEST(Rockfall, TheCapOfAWeatheredNeckFallsThroughTheSimulation) {
   const Preset p = neckPreset(1, RockfallMode::Drop);
-  const WeatheringResult result = weatherRock(buildInitialRock(p), p);
+  const WeatheringResult result = weatherRock(buildInitialRock(resolveShape(p), p), p);
   std::size_t fallen = 0;
   for (const auto& c : result.cycles) fallen += c.fallen;
   EXPECT_GT(fallen, 100u);
@@ -283,7 +283,7 @@ TEST(Colluvium, PilesKeepTheirTalusAngle) {
 
 TEST(Colluvium, IsConservedCycleByCycle) {
   const Preset p = neckPreset(2, RockfallMode::Crumble);
-  WeatheringSimulation sim(buildInitialRock(p), p);
+  WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
   std::size_t colluvium = 0, decimated = 0, deposited = 0, removed = 0;
   while (!sim.finished()) {
     const CycleStats c = sim.step();

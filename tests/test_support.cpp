@@ -8,8 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/hash.h"
 
 namespace rockbake::test {
 
@@ -144,6 +147,62 @@ double surfaceDistanceSpread(const VoxelRock& rock) {
   double var = 0;
   for (double v : d) var += (v - mean) * (v - mean);
   return std::sqrt(var / double(d.size())) / mean;
+}
+
+VoxelRock randomRock(int nx, int ny, int nz, std::uint64_t seed, double fill, bool ground) {
+  VoxelRock rock;
+  GridLayout& g = rock.layout;
+  g.nx = nx, g.ny = ny, g.nz = nz;
+  g.margin = 2;
+  g.h = 0.125;
+  g.origin = {-1.25, -0.75, 0.0};
+  g.ground = ground;
+  rock.material.assign(g.cellCount(), Material::Air);
+  rock.integrity.assign(g.cellCount(), 1.0f);
+  rock.durability.assign(g.cellCount(), 0.0f);
+  for (std::size_t i = 0; i < rock.material.size(); ++i) {
+    const double u = unitInterval(counterHash(seed, purposeId("test-fill"), 0, i));
+    if (u < fill * 0.8) {
+      rock.material[i] = Material::Rock;
+      rock.durability[i] = float(0.1 + 2.9 * unitInterval(counterHash(seed, purposeId("test-durability"), 0, i)));
+    } else if (u < fill) {
+      rock.material[i] = Material::Colluvium;
+    }
+  }
+  return rock;
+}
+
+TriangleMesh icosphere(int levels) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  TriangleMesh m;
+  m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  const auto normalise = [](std::array<double, 3> p) {
+    const double l = std::hypot(p[0], p[1], p[2]);
+    return std::array<double, 3>{p[0] / l, p[1] / l, p[2] / l};
+  };
+  for (auto& p : m.positions) p = normalise(p);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
+    const auto mid = [&](std::uint32_t a, std::uint32_t b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      if (const auto it = middle.find(key); it != middle.end()) return it->second;
+      const auto& pa = m.positions[a];
+      const auto& pb = m.positions[b];
+      m.positions.push_back(normalise({pa[0] + pb[0], pa[1] + pb[1], pa[2] + pb[2]}));
+      return middle[key] = std::uint32_t(m.positions.size() - 1);
+    };
+    std::vector<std::array<std::uint32_t, 3>> finer;
+    for (const auto& [a, b, c] : m.triangles) {
+      const std::uint32_t ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      finer.insert(finer.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+    }
+    m.triangles = finer;
+  }
+  return m;
 }
 
 }  // namespace rockbake::test

@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake::test {
 
@@ -50,5 +51,15 @@ std::vector<Vec3d> surfaceVoxelCentres(const VoxelRock& rock);
 Vec3d rockCentroid(const VoxelRock& rock);
 // Coefficient of variation of the surface voxels' distances from the centroid.
 double surfaceDistanceSpread(const VoxelRock& rock);
+
+// A random grid for exact-count and round-trip checks: each cell is rock with
+// probability 0.8 × fill, colluvium with 0.2 × fill, else air (counter-hashed
+// from `seed`); rock gets a durability in [0.1, 3), integrity 1. Layout: h =
+// 0.125, margin 2, origin (-1.25, -0.75, 0), ground as given.
+VoxelRock randomRock(int nx, int ny, int nz, std::uint64_t seed, double fill = 0.6, bool ground = true);
+
+// A unit-radius icosphere about the origin, `levels` times subdivided,
+// outward-facing (20 · 4^levels triangles).
+TriangleMesh icosphere(int levels);
 
 }  // namespace rockbake::test

@@ -55,7 +55,7 @@ TEST(Weathering, CubeBecomesASphere) {
   p.response = threshold(0.5);
   p.stop.cycles = 1000;
   p.stop.rock_volume_fraction = 0.5;
-  const VoxelRock cube = buildInitialRock(p);
+  const VoxelRock cube = buildInitialRock(resolveShape(p), p);
   EXPECT_NEAR(test::surfaceDistanceSpread(cube), 0.127, 0.002);
   const WeatheringResult result = weatherRock(cube, p);
   const double remaining = double(result.rock.count(Material::Rock)) / double(cube.count(Material::Rock));
@@ -68,7 +68,7 @@ TEST(Weathering, ThresholdLeavesFlatFacesAloneAndCyclesAreSynchronous) {
   Preset p = cubePreset(3.2, 32, 0.4);
   p.response = threshold(0.5);
   p.stop.cycles = 1;
-  const VoxelRock cube = buildInitialRock(p);
+  const VoxelRock cube = buildInitialRock(resolveShape(p), p);
   const WeatheringResult result = weatherRock(cube, p);
   // One cycle lowers the integrity of the voxels exposed at its start: the
   // centre of every face (s = ½, f = 0) keeps all of it, corners lose some.
@@ -115,7 +115,7 @@ TEST(Weathering, InsideCornerBecomesACavern) {
   p.response = threshold(0.5);
   p.stop.cycles.reset();
   p.stop.time = 1.0;
-  const VoxelRock corner = buildInitialRock(p);
+  const VoxelRock corner = buildInitialRock(resolveShape(p), p);
   const WeatheringResult result = weatherRock(corner, p);
   const GridLayout& g = corner.layout;
   const std::vector<int> depth = depthBelowSurface(corner);
@@ -169,7 +169,7 @@ TEST(Weathering, ProfileFollowsTheDurabilityGraph) {
   // Paper Fig. 15: durable layers stand proud, soft layers are cut back.
   Preset p = columnPreset(48);
   p.durability.graph.points = {{0.0, 2.0}, {0.3, 0.5}, {0.55, 2.5}, {0.8, 0.7}, {1.0, 1.5}};
-  const WeatheringResult result = weatherRock(buildInitialRock(p), p);
+  const WeatheringResult result = weatherRock(buildInitialRock(resolveShape(p), p), p);
   const GridLayout& g = result.rock.layout;
   const std::vector<double> radii = layerRadii(result.rock);
   std::vector<double> r, d;
@@ -221,7 +221,7 @@ TEST(Weathering, CubeTakesTheEllipsoidBubblesProportions) {
   p.response = threshold(0.5);
   p.stop.cycles = 1000;
   p.stop.rock_volume_fraction = 0.4;
-  const auto spread = rockSpread(weatherRock(buildInitialRock(p), p).rock);
+  const auto spread = rockSpread(weatherRock(buildInitialRock(resolveShape(p), p), p).rock);
   RecordProperty("spread_x", std::to_string(spread[0]));
   RecordProperty("spread_y", std::to_string(spread[1]));
   EXPECT_GT(spread[0], 1.08 * spread[1]);
@@ -229,7 +229,7 @@ TEST(Weathering, CubeTakesTheEllipsoidBubblesProportions) {
 
   // The same cube under a sphere bubble stays isotropic.
   p.bubbles[0].bubble = {BubbleSpec::Kind::Sphere, {0.4, 0, 0}, {}};
-  const auto round = rockSpread(weatherRock(buildInitialRock(p), p).rock);
+  const auto round = rockSpread(weatherRock(buildInitialRock(resolveShape(p), p), p).rock);
   EXPECT_NEAR(round[0], round[1], 0.05);
   EXPECT_NEAR(round[0], round[2], 0.05);
 }
@@ -239,7 +239,7 @@ double cornerToFaceRetreat(const ResponseParams& response) {
   Preset p = cubePreset(4.0, 40, 0.4);
   p.response = response;
   p.stop.cycles = 8;
-  const VoxelRock cube = buildInitialRock(p);
+  const VoxelRock cube = buildInitialRock(resolveShape(p), p);
   const WeatheringResult result = weatherRock(cube, p);
   const int m = cube.layout.margin, mid = m + 20;
   int face = 0;
@@ -271,7 +271,7 @@ TEST(Weathering, KeyframeThatSoftensABandSpeedsUpItsRetreatAfterItsTime) {
   keyframe.graph.points = {{0.0, 1.0}, {0.39, 1.0}, {0.4, 0.25}, {0.6, 0.25}, {0.61, 1.0}, {1.0, 1.0}};
   edited.durability.keyframes = {keyframe};
 
-  const VoxelRock start = buildInitialRock(plain);
+  const VoxelRock start = buildInitialRock(resolveShape(plain), plain);
   const WeatheringResult a = weatherRock(start, plain);
   const WeatheringResult b = weatherRock(start, edited);
   const GridLayout& g = start.layout;
@@ -324,8 +324,8 @@ TEST(Weathering, SamePresetAtTwoResolutionsGivesTheSameRock) {
   p.stop.time = 1.2;
   Preset fine = p;
   fine.grid.resolution = 96;
-  const WeatheringResult a = weatherRock(buildInitialRock(p), p);
-  const WeatheringResult b = weatherRock(buildInitialRock(fine), fine);
+  const WeatheringResult a = weatherRock(buildInitialRock(resolveShape(p), p), p);
+  const WeatheringResult b = weatherRock(buildInitialRock(resolveShape(fine), fine), fine);
   const double iou = resampledIoU(a.rock, b.rock);
   RecordProperty("iou", std::to_string(iou));
   EXPECT_GE(iou, 0.85);
@@ -335,7 +335,7 @@ TEST(Weathering, UntilStopsAtTheRockVolumeFraction) {
   Preset p = cubePreset(3.2, 32, 0.4);
   p.stop.cycles = 500;
   p.stop.rock_volume_fraction = 0.8;
-  const VoxelRock cube = buildInitialRock(p);
+  const VoxelRock cube = buildInitialRock(resolveShape(p), p);
   const WeatheringResult result = weatherRock(cube, p);
   ASSERT_FALSE(result.cycles.empty());
   EXPECT_LT(result.cycles.size(), 500u);

@@ -20,15 +20,18 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "cli/library_progress.h"
+#include "core/error.h"
 #include "pipeline/bake_asset.h"
-#include "pipeline/library.h"
 #include "pipeline/library_bake.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
+#include "pipeline/read_inputs.h"
+#include "pipeline/rerender_asset.h"
+#include "preset/library.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
-#include "util/error.h"
 
 namespace {
 
@@ -54,6 +57,9 @@ struct BakeArgs {
   bool no_render = false;
 };
 
+// --resolution takes what grid.resolution takes.
+const CLI::Range kResolutionRange(rockbake::GridParams::kMinResolution, rockbake::GridParams::kMaxResolution);
+
 int runBake(const BakeArgs& args) {
   const auto thread_limit = limitThreads(args.threads);
   rockbake::PresetOverrides overrides{args.sets, args.seed, args.resolution};
@@ -61,10 +67,12 @@ int runBake(const BakeArgs& args) {
   // Every preset is validated before anything is baked, so a typo in the
   // last one does not leave the first ones half done.
   std::vector<rockbake::Preset> presets;
+  std::vector<rockbake::ResolvedShape> shapes;
   std::vector<double> load_seconds;
   for (const auto& file : args.presets) {
     const auto start = std::chrono::steady_clock::now();
     presets.push_back(rockbake::loadPreset(file, overrides));
+    shapes.push_back(rockbake::readInputs(presets.back()));
     load_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   for (std::size_t i = 0; i < presets.size(); ++i)
@@ -82,7 +90,7 @@ int runBake(const BakeArgs& args) {
     options.load_seconds = load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
-    const auto summary = rockbake::bakeAsset(presets[i], options);
+    const auto summary = rockbake::bakeAsset(presets[i], shapes[i], options);
     spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
   }
@@ -95,42 +103,9 @@ struct RenderArgs {
   int threads = 0;
 };
 
-// Renders a baked asset again from its folder (its stats.json and rock_mesh.inc).
 int runRender(const RenderArgs& args) {
-  namespace fs = std::filesystem;
-  const fs::path dir = args.asset_dir;
-  const fs::path stats_file = dir / "stats.json";
-  if (!fs::is_regular_file(stats_file) || !fs::is_regular_file(dir / "rock_mesh.inc"))
-    throw rockbake::InputError({dir.string()}, "", "not a rendered asset folder (no stats.json or rock_mesh.inc)",
-                               "bake it first with `rockbake bake PRESET` (without --no-mesh / --no-render)");
-  nlohmann::json stats;
-  try {
-    std::ifstream in(stats_file);
-    stats = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw rockbake::InputError({stats_file.string()}, "", std::string("unreadable: ") + e.what(),
-                               "bake the asset again");
-  }
-  const nlohmann::json& preset = stats.at("preset");
-  const nlohmann::json& render = preset.at("render");
-  rockbake::RenderRequest request;
-  request.asset_dir = dir;
-  request.params.template_name = render.at("template").get<std::string>();
-  request.params.width = render.at("width").get<int>();
-  request.params.height = render.at("height").get<int>();
-  request.params.quality = render.value("quality", request.params.quality);
-  request.params.antialias = render.value("antialias", request.params.antialias);
-  request.params.turntable_frames = render.at("turntable").value("frames", 0);
-  request.template_override = args.template_name;
-  request.preset_name = preset.at("name").get<std::string>();
-  request.seed = preset.at("seed").get<std::uint64_t>();
-  request.preset_hash = rockbake::presetHash(preset);
-  request.threads = args.threads;
-  const rockbake::AssetFolderSnapshot before = rockbake::snapshotAssetFolder(dir);
-  const auto out = rockbake::rerenderAsset(request);
-  rockbake::updateManifestOutputs(before,
-                                  args.template_name.empty() ? request.params.template_name : args.template_name);
-  spdlog::info("{}: rendered {} in {:.1f} s", request.preset_name, out.render_png.string(), out.seconds_total);
+  const auto out = rockbake::rerenderAssetFolder({args.asset_dir, args.template_name, args.threads});
+  spdlog::info("rendered {} in {:.1f} s", out.render_png.string(), out.seconds_total);
   return kExitOk;
 }
 
@@ -143,7 +118,13 @@ struct LintArgs {
 int runLint(const LintArgs& args) {
   std::size_t problems = 0, failed = 0;
   for (const auto& file : args.presets) {
-    const std::vector<rockbake::InputError> found = rockbake::lintPreset(file);
+    std::vector<rockbake::InputError> found = rockbake::lintPreset(file);
+    // The files the preset names, and the grid against this machine's memory, as a bake checks them.
+    if (found.empty()) try {
+        rockbake::readInputs(rockbake::loadPreset(file));
+      } catch (const rockbake::InputError& e) {
+        found.push_back(e);
+      }
     for (const auto& problem : found) std::cout << problem.what() << '\n';
     if (found.empty()) std::cout << file << ": ok\n";
     problems += found.size();
@@ -233,7 +214,9 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   options.mesh = !args.no_mesh;
   options.render = !args.no_render && !args.no_mesh;
   options.cancel = &library_interrupted;
-  options.terminal = ::isatty(STDERR_FILENO) == 1;
+  rockbake::LibraryProgress progress(jobs.size(), std::max(1, args.jobs), ::isatty(STDERR_FILENO) == 1,
+                                     &library_interrupted);
+  options.observer = progress.observer();
   spdlog::info("{}: {} jobs{}, {} at once → {}", args.library, jobs.size(),
                shard.count > 1 ? fmt::format(" (shard {}/{} of {})", shard.index, shard.count, all_jobs.size()) : "",
                options.jobs, args.out_dir);
@@ -241,6 +224,7 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   if (!verbose) spdlog::set_level(spdlog::level::warn);
   installLibraryInterruptHandlers();
   const auto result = rockbake::bakeLibrary(library, jobs, options);
+  progress.finish();
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (!verbose) spdlog::set_level(spdlog::level::info);
@@ -282,7 +266,7 @@ int main(int argc, char** argv) {
   bake_cmd->add_option("--seed", bake.seed, "Override the presets' seed");
   bake_cmd->add_option("--set", bake.sets, "Override a preset key: key.path=YAML value (repeatable)");
   bake_cmd->add_option("--resolution", bake.resolution, "Override grid.resolution (voxels along the longest side)")
-      ->check(CLI::Range(8, 2048));
+      ->check(kResolutionRange);
   bake_cmd->add_flag("--no-mesh", bake.no_mesh, "Skip meshing (and so rendering)");
   bake_cmd->add_flag("--no-render", bake.no_render, "Skip rendering");
 
@@ -309,7 +293,7 @@ int main(int argc, char** argv) {
   preset_show_cmd->add_option("--set", preset_show.sets, "Override a preset key: key.path=YAML value (repeatable)");
   preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed");
   preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
-      ->check(CLI::Range(8, 2048));
+      ->check(kResolutionRange);
 
   LibraryArgs library;
   CLI::App* library_cmd = app.add_subcommand(
@@ -330,7 +314,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024));
   library_cmd->add_option("--set", library.sets, "Override a key of every job's preset, before its wedge (repeatable)");
   library_cmd->add_option("--resolution", library.resolution, "Override grid.resolution of every job")
-      ->check(CLI::Range(8, 2048));
+      ->check(kResolutionRange);
   library_cmd->add_flag("--no-mesh", library.no_mesh, "Skip meshing (and so rendering)");
   library_cmd->add_flag("--no-render", library.no_render, "Skip rendering");
 

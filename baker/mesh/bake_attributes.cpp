@@ -1,6 +1,6 @@
 #include "mesh/bake_attributes.h"
 
-#include "render/color.h"
+#include "core/colour.h"
 
 #include <algorithm>
 #include <cmath>
@@ -140,11 +140,6 @@ void paint(SurfaceMesh& m, const PaletteParams& p) {
 }
 
 }  // namespace
-
-float linearToSrgb(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
 
 AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources) {
   sampleSurface(meshes.rock, sources, false);

@@ -14,9 +14,9 @@
 #include <optional>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 
@@ -46,8 +46,5 @@ PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake);
 //              the durability range, pale buff (soft) → deep red-brown (durable);
 //              blended towards the colluvium colour by coverage
 AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params);
-
-// The sRGB transfer function on [0, 1]: how PLY and OBJ store colours.
-float linearToSrgb(float c);
 
 }  // namespace rockbake

@@ -1,6 +1,8 @@
 #include "mesh/extract_surfaces.h"
 
-#include "io/openvdb_support.h"
+#include "core/mesh_checks.h"
+
+#include "core/openvdb_support.h"
 
 #include <algorithm>
 #include <cmath>
@@ -100,22 +102,6 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
 
 }  // namespace
 
-double signedVolume(const SurfaceMesh& m) {
-  double v = 0;
-  const auto tet = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const auto& p = m.positions[a];
-    const auto& q = m.positions[b];
-    const auto& r = m.positions[c];
-    return (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-            double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-            double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-           6.0;
-  };
-  for (const auto& t : m.triangles) v += tet(t[0], t[1], t[2]);
-  for (const auto& q : m.quads) v += tet(q[0], q[1], q[2]) + tet(q[0], q[2], q[3]);
-  return v;
-}
-
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
                             std::shared_ptr<const SmoothedSdf>* rock_sdf) {
   initializeOpenVdb();
@@ -128,13 +114,7 @@ AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(std::string("mesh extraction failed: ") + e.what());
   }
-  std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                          std::numeric_limits<float>::max()};
-  std::array<float, 3> hi{-lo[0], -lo[1], -lo[2]};
-  for (const SurfaceMesh* m : {&out.rock, &out.colluvium})
-    for (const auto& p : m->positions)
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  if (!out.rock.positions.empty() || !out.colluvium.positions.empty()) out.bounds_min = lo, out.bounds_max = hi;
+  updateBounds(out);
   if (rock_sdf) *rock_sdf = rock_field ? std::make_shared<const SmoothedSdf>(SmoothedSdf{rock_field}) : nullptr;
   return out;
 }

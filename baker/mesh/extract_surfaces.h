@@ -1,3 +1,7 @@
+// The mesh stage takes the simulation's VoxelRock and gives AssetMeshes: this
+// file extracts the surfaces; bake_attributes.h samples and colours them,
+// subdivide.h refines them, simplify_lods.h makes the LODs.
+//
 // Extraction (SPEC §3): the rock and the colluvium of a voxel grid as separate
 // closed, 2-manifold, outward-oriented surfaces, quad-dominant.
 //
@@ -13,8 +17,8 @@
 
 #include <memory>
 
-#include "mesh/surface_mesh.h"
-#include "sim/voxel_rock.h"
+#include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 
 namespace rockbake {
 
@@ -32,8 +36,5 @@ struct ExtractParams {
 // Throws std::runtime_error if OpenVDB fails.
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
                             std::shared_ptr<const SmoothedSdf>* rock_sdf = nullptr);
-
-// Signed volume enclosed by the triangles and quads (positive when they face outwards).
-double signedVolume(const SurfaceMesh& mesh);
 
 }  // namespace rockbake

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 
 namespace rockbake {
 

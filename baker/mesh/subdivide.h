@@ -8,7 +8,7 @@
 // z = 0 and its rim stays on the ground.
 #pragma once
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 
 namespace rockbake {
 

@@ -5,9 +5,12 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
-#include "io/vdb_file.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/stopwatch.h"
+#include "export/vdb_file.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
 #include "sim/shapes.h"
@@ -15,20 +18,6 @@
 
 namespace rockbake {
 namespace {
-
-class StageClock {
- public:
-  // Seconds since the last call (or construction).
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
@@ -49,18 +38,24 @@ nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
 }  // namespace
 
 BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
+  return bakeAsset(preset, readInputs(preset), options);
+}
+
+BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   BakeSummary summary;
   summary.asset_dir = options.out_dir / preset.name;
   nlohmann::ordered_json stages;
   stages["load"] = options.load_seconds;
-  StageClock clock;
-  const auto total_start = std::chrono::steady_clock::now();
+  Stopwatch clock;
   const AssetFolderSnapshot before = beginAssetFolder(summary.asset_dir);
   const auto check_cancel = [&] {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
   };
 
-  VoxelRock initial = buildInitialRock(preset);
+  VoxelRock initial = buildInitialRock(shape, preset);
+  if (initial.count(Material::Rock) == 0)
+    throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",
+                     "check its size and center against grid.size, or raise grid.resolution");
   const GridLayout& g = initial.layout;
   summary.initial_rock = initial.count(Material::Rock);
   stages["shape"] = clock.lap();
@@ -100,8 +95,10 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
     stages["export"] = meshes.export_seconds;
     clock.lap();
     // rock_sdf in the VDB is the field the meshes were made from.
-    writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb", meshes.rock_sdf.get());
-    stages["write_vdb"] = clock.lap();
+    if (exportsFormat(preset, "vdb")) {
+      writeRockVdb(weathered.rock, summary.asset_dir / "rock.vdb", meshes.rock_sdf.get());
+      stages["write_vdb"] = clock.lap();
+    }
 
     if (options.render) {
       check_cancel();
@@ -110,7 +107,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
       request.params = preset.render;
       request.preset_name = preset.name;
       request.seed = preset.seed;
-      request.preset_hash = presetHash(preset);
+      request.preset_hash = presetFingerprint(preset, options.manifest);
       request.threads = options.render_threads;
       request.cancel = options.cancel;
       const RenderOutputs rendered = renderAsset(meshes.meshes, request);
@@ -120,7 +117,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
     }
   }
 
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - total_start).count();
+  summary.seconds = clock.elapsed();
   stages["total"] = summary.seconds + options.load_seconds;
   nlohmann::ordered_json stats;
   stats["cycles"] = cyclesToJson(weathered.cycles);

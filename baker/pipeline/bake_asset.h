@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "inputs/resolve_shape.h"
 #include "pipeline/manifest.h"
 #include "preset/preset.h"
 
@@ -42,6 +43,10 @@ struct BakeSummary {
   double seconds = 0.0;
 };
 
+// `shape` is readInputs(preset) (pipeline/read_inputs.h), read before the bake
+// so that a caller can check every input of several presets first; the
+// two-argument form reads it itself.
+BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options);
 BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options);
 
 }  // namespace rockbake

@@ -1,5 +1,8 @@
 #include "pipeline/bake_meshes.h"
 
+#include "core/mesh_checks.h"
+#include "core/stopwatch.h"
+
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -8,9 +11,9 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_group.h>
 
-#include "io/glb_file.h"
-#include "io/obj_file.h"
-#include "io/ply_file.h"
+#include "export/glb_file.h"
+#include "export/obj_file.h"
+#include "export/ply_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/simplify_lods.h"
@@ -18,48 +21,29 @@
 #include "sim/weathering.h"
 
 namespace rockbake {
-namespace {
 
-double since(std::chrono::steady_clock::time_point& last) {
-  const auto now = std::chrono::steady_clock::now();
-  const double seconds = std::chrono::duration<double>(now - last).count();
-  last = now;
-  return seconds;
-}
-
-bool wants(const Preset& preset, const char* format) {
+bool exportsFormat(const Preset& preset, const std::string& format) {
   return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
 }
 
-}  // namespace
-
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   MeshStageResult r;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &r.rock_sdf);
-  r.extract_seconds = since(clock);
+  r.extract_seconds = clock.lap();
 
   const std::vector<float> exposure = exposureField(rock, preset);
   meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  r.attributes_seconds = since(clock);
+  r.attributes_seconds = clock.lap();
 
   const SubdivideParams levels{preset.mesh.subdivision};
   meshes.rock = subdivideSurface(meshes.rock, levels);
   meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
-  r.subdivide_seconds = since(clock);
-  meshes.bounds_min = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                       std::numeric_limits<float>::max()};
-  meshes.bounds_max = {std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(),
-                       std::numeric_limits<float>::lowest()};
-  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
-    for (const auto& p : m->positions)
-      for (int a = 0; a < 3; ++a)
-        meshes.bounds_min[a] = std::min(meshes.bounds_min[a], p[a]),
-        meshes.bounds_max[a] = std::max(meshes.bounds_max[a], p[a]);
-  if (meshes.rock.positions.empty() && meshes.colluvium.positions.empty()) meshes.bounds_min = meshes.bounds_max = {};
+  r.subdivide_seconds = clock.lap();
+  updateBounds(meshes);
 
   meshes = applyPalette(std::move(meshes), paletteParams(rock, preset.bake));
-  r.attributes_seconds += since(clock);
+  r.attributes_seconds += clock.lap();
   spdlog::debug("{}: rock {} vertices, {} triangles; colluvium {} vertices, {} triangles", preset.name,
                 meshes.rock.positions.size(), meshes.rock.triangles.size(), meshes.colluvium.positions.size(),
                 meshes.colluvium.triangles.size());
@@ -71,19 +55,19 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
 MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
   MeshStageResult r = buildMeshes(rock, preset);
   const AssetMeshes& meshes = r.meshes;
-  const auto export_start = std::chrono::steady_clock::now();
+  const Stopwatch export_clock;
 
   // The files are independent: write them concurrently, so one file's
   // formatting or simplification overlaps another's disk writes and fsync.
   const auto timed = [&](const char* what, auto&& write) {
     return [&, what, write] {
-      auto clock = std::chrono::steady_clock::now();
+      Stopwatch clock;
       write();
-      spdlog::debug("{}: {} in {:.3f} s", preset.name, what, since(clock));
+      spdlog::debug("{}: {} in {:.3f} s", preset.name, what, clock.lap());
     };
   };
   tbb::task_group exports;
-  if (wants(preset, "ply")) {
+  if (exportsFormat(preset, "ply")) {
     exports.run(timed("rock.ply", [&] { writePly(meshes.rock, asset_dir / "rock.ply"); }));
     if (!meshes.colluvium.positions.empty()) {
       exports.run(timed("colluvium.ply", [&] { writePly(meshes.colluvium, asset_dir / "colluvium.ply"); }));
@@ -92,8 +76,8 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
       std::filesystem::remove(asset_dir / "colluvium.ply", ignored);
     }
   }
-  if (wants(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
-  if (wants(preset, "glb")) {
+  if (exportsFormat(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
+  if (exportsFormat(preset, "glb")) {
     exports.run(timed("glb", [&] { writeGlb(meshes, asset_dir / "rock.glb"); }));
     exports.run(timed("lods", [&] {
       const std::vector<AssetMeshes> lods = simplifyLods(meshes, {preset.mesh.lods});
@@ -102,7 +86,7 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
     }));
   }
   exports.wait();  // rethrows the first failure
-  r.export_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count();
+  r.export_seconds = export_clock.elapsed();
   return r;
 }
 

@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 
@@ -23,6 +23,9 @@ struct MeshStageResult {
   std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
   double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, export_seconds = 0;
 };
+
+// Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").
+bool exportsFormat(const Preset& preset, const std::string& format);
 
 // Surfaces, attributes, subdivision and palette, in memory (no files).
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);

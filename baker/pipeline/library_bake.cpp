@@ -2,11 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <condition_variable>
-#include <cstdio>
-#include <mutex>
-#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -15,138 +10,16 @@
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
-#include "util/error.h"
 
 namespace rockbake {
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-enum class Status { Baked, Skipped, Failed, NotRun };
-
-struct JobOutcome {
-  std::size_t index = 0;
-  Status status = Status::NotRun;
-  std::string message;
-  double seconds = 0;
-};
-
-std::string clockText(double seconds) {
-  const long s = long(std::lround(std::max(0.0, seconds)));
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
-                   : fmt::format("{}:{:02}", s / 60, s % 60);
-}
-
-// Progress and ETA: one status line redrawn in place on a terminal, plain log
-// lines otherwise. Called from the pipeline's threads.
-class Progress {
- public:
-  // Log lines go through a copy of the default logger kept at info level, so they show while the
-  // jobs' own logs are turned down.
-  Progress(std::size_t total, int jobs, bool terminal, const std::atomic<bool>* cancel)
-      : total_(total),
-        jobs_(jobs),
-        terminal_(terminal),
-        cancel_(cancel),
-        log_(spdlog::default_logger()->clone("library")) {
-    log_->set_level(spdlog::level::info);
-    // On a terminal the status line also ticks between events, so elapsed time and ETA stay current.
-    if (terminal_)
-      ticker_ = std::thread([this] {
-        std::unique_lock lock(mutex_);
-        while (!stopping_) {
-          redraw();
-          tick_.wait_for(lock, std::chrono::seconds(1));
-        }
-      });
-  }
-  ~Progress() { finish(); }
-
-  void started(const std::string& name) {
-    std::lock_guard lock(mutex_);
-    running_.insert(name);
-    if (terminal_)
-      redraw();
-    else
-      log_->info("{}: started ({} running)", name, running_.size());
-  }
-
-  void finished(const std::string& name, const JobOutcome& outcome) {
-    std::lock_guard lock(mutex_);
-    running_.erase(name);
-    ++done_;
-    if (outcome.status == Status::Baked) baked_seconds_ += outcome.seconds, ++baked_;
-    if (outcome.status == Status::Failed) ++failed_;
-    const char* what = outcome.status == Status::Baked     ? "baked"
-                       : outcome.status == Status::Skipped ? "complete, skipped (resumed)"
-                       : outcome.status == Status::Failed  ? "FAILED"
-                                                           : "stopped";
-    std::string line = fmt::format("[{}/{}] {}: {} in {:.1f} s", done_, total_, name, what, outcome.seconds);
-    if (outcome.status == Status::Failed) line += ": " + outcome.message;
-    if (terminal_) {
-      // Failures stay on screen; everything else lives in the status line.
-      if (outcome.status == Status::Failed) std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
-      redraw();
-    } else {
-      if (outcome.status == Status::Failed)
-        log_->error("{}", line);
-      else
-        log_->info("{} (ETA {})", line, clockText(eta()));
-    }
-  }
-
-  void finish() {
-    {
-      std::lock_guard lock(mutex_);
-      if (stopping_) return;
-      stopping_ = true;
-      if (terminal_) std::fprintf(stderr, "\r\033[K"), std::fflush(stderr);
-    }
-    tick_.notify_all();
-    if (ticker_.joinable()) ticker_.join();
-  }
-
- private:
-  // Remaining jobs × mean seconds of the jobs baked so far, shared among the parallel jobs.
-  double eta() const {
-    if (baked_ == 0) return 0;
-    const double remaining = double(total_ - done_);
-    return remaining * (baked_seconds_ / baked_) / std::max(1.0, std::min<double>(jobs_, remaining));
-  }
-
-  void redraw() {
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-    std::string running;
-    for (const auto& name : running_) running += (running.empty() ? "" : ", ") + name;
-    const bool stopping = cancel_ && cancel_->load();
-    std::string line = fmt::format("{}[{}/{}] {} failed, elapsed {}, ETA {}{}{}",
-                                   stopping ? "stopping at the next stage (Ctrl-C again: at once) " : "", done_, total_,
-                                   failed_, clockText(elapsed), baked_ ? clockText(eta()) : std::string("--:--"),
-                                   running.empty() ? "" : " | ", running);
-    if (line.size() > 150) line = line.substr(0, 147) + "...";
-    std::fprintf(stderr, "\r\033[K%s", line.c_str());
-    std::fflush(stderr);
-  }
-
-  std::mutex mutex_;
-  std::condition_variable tick_;
-  std::thread ticker_;
-  bool stopping_ = false;
-  const std::size_t total_;
-  const int jobs_;
-  const bool terminal_;
-  const std::atomic<bool>* cancel_;
-  const std::shared_ptr<spdlog::logger> log_;
-  const Clock::time_point start_ = Clock::now();
-  std::set<std::string> running_;
-  std::size_t done_ = 0;
-  int baked_ = 0, failed_ = 0;
-  double baked_seconds_ = 0;
-};
 
 }  // namespace
 
@@ -175,7 +48,6 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
   const auto cancelled = [&] { return options.cancel && options.cancel->load(); };
   fs::create_directories(options.out_dir);
 
-  Progress progress(jobs.size(), jobs_at_once, options.terminal, options.cancel);
   std::vector<JobOutcome> outcomes(jobs.size());
   for (std::size_t i = 0; i < jobs.size(); ++i) outcomes[i].index = i;
 
@@ -197,13 +69,13 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
     inputs.library_file = library.file.filename().string();
     inputs.library_sha256 = library.sha256;
 
-    progress.started(job.name);
+    if (options.observer.started) options.observer.started(job.name);
     try {
       Preset preset = loadPreset(entry.preset_file, overrides);
       preset.name = job.name;  // the asset is the job: OUT/<job>/, and the name in its headers
       const double load_seconds = seconds();
       if (isCompleteAsset(asset_dir, bakeInputHash(preset, options.mesh, options.render, base_dir))) {
-        outcome.status = Status::Skipped;
+        outcome.status = JobStatus::Skipped;
       } else {
         BakeOptions bake;
         bake.out_dir = options.out_dir;
@@ -216,15 +88,15 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
         // Isolated, so that a thread waiting inside this job's parallel loops does not pick up
         // another whole job and hold this one up until that one ends.
         tbb::this_task_arena::isolate([&] { bakeAsset(preset, bake); });
-        outcome.status = Status::Baked;
+        outcome.status = JobStatus::Baked;
       }
     } catch (const BakeCancelled&) {
-      outcome.status = Status::NotRun;
+      outcome.status = JobStatus::NotRun;
     } catch (const std::exception& e) {
       if (cancelled()) {
-        outcome.status = Status::NotRun;  // e.g. POV-Ray stopped by the same Ctrl-C
+        outcome.status = JobStatus::NotRun;  // e.g. POV-Ray stopped by the same Ctrl-C
       } else {
-        outcome.status = Status::Failed;
+        outcome.status = JobStatus::Failed;
         outcome.message = e.what();
         try {
           beginAssetFolder(asset_dir);  // drop an earlier bake's manifest: this job's inputs no longer match it
@@ -235,7 +107,7 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
       }
     }
     outcome.seconds = seconds();
-    progress.finished(job.name, outcome);
+    if (options.observer.finished) options.observer.finished(job.name, outcome);
     return outcome;
   };
 
@@ -253,7 +125,6 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
           tbb::make_filter<std::size_t, JobOutcome>(tbb::filter_mode::parallel, run_job) &
           tbb::make_filter<JobOutcome, void>(tbb::filter_mode::serial_out_of_order,
                                              [&](JobOutcome outcome) { outcomes[outcome.index] = outcome; }));
-  progress.finish();
 
   LibraryBakeResult result;
   result.cancelled = cancelled();
@@ -262,20 +133,20 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
   for (const auto& outcome : outcomes) {
     const std::string& name = jobs[outcome.index].name;
     switch (outcome.status) {
-      case Status::Baked:
+      case JobStatus::Baked:
         ++result.baked;
         statuses[name] = "baked";
         break;
-      case Status::Skipped:
+      case JobStatus::Skipped:
         ++result.skipped;
         statuses[name] = "skipped-resumed";
         run_status[name] = "skipped-resumed";
         break;
-      case Status::Failed:
+      case JobStatus::Failed:
         ++result.failed;
         statuses[name] = "failed";
         break;
-      case Status::NotRun:
+      case JobStatus::NotRun:
         ++result.not_run;
         statuses[name] = "not-run";
         break;

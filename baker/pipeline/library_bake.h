@@ -18,14 +18,31 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "pipeline/library.h"
+#include "preset/library.h"
 #include "preset/load_preset.h"
 
 namespace rockbake {
+
+enum class JobStatus { Baked, Skipped, Failed, NotRun };
+
+struct JobOutcome {
+  std::size_t index = 0;  // in the job list
+  JobStatus status = JobStatus::NotRun;
+  std::string message;  // Failed: what went wrong
+  double seconds = 0;
+};
+
+// Told of each job as it starts and ends (the command line's progress display),
+// from the pipeline's threads: calls may come from several threads at once.
+struct LibraryObserver {
+  std::function<void(const std::string& job)> started;
+  std::function<void(const std::string& job, const JobOutcome& outcome)> finished;
+};
 
 struct LibraryBakeOptions {
   std::filesystem::path out_dir = "out";
@@ -36,7 +53,7 @@ struct LibraryBakeOptions {
   bool mesh = true;
   bool render = true;
   const std::atomic<bool>* cancel = nullptr;
-  bool terminal = false;  // one updating status line (stderr is a terminal) instead of log lines
+  LibraryObserver observer;
 };
 
 struct LibraryBakeResult {

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
-#include "io/png_image.h"
+#include "core/atomic_file.h"
+#include "core/png_image.h"
 #include "pipeline/manifest.h"
 #include "render/contact_sheet.h"
 

@@ -12,9 +12,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
+#include "core/sha256.h"
 #include "preset/preset_json.h"
-#include "util/sha256.h"
 
 namespace rockbake {
 namespace {
@@ -140,6 +140,10 @@ std::string bakeInputHash(const Preset& preset, bool mesh, bool render, const fs
   return sha256Hex(fingerprint.dump());
 }
 
+std::string presetFingerprint(const Preset& preset, const ManifestInputs& inputs) {
+  return sha256Hex(portablePreset(preset, presetBase(preset, inputs)).dump());
+}
+
 AssetFolderSnapshot beginAssetFolder(const fs::path& asset_dir) {
   // The manifest goes first: from here on the folder does not look finished.
   fs::remove(asset_dir / kManifestFile);
@@ -184,7 +188,7 @@ void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, cons
   manifest["asset"] = preset.name;
   manifest["inputs"] = {{"input_hash", bakeInputHash(preset, mesh, render, base)},
                         {"baker_version", ROCKBAKE_VERSION},
-                        {"preset_sha256", sha256Hex(resolved.dump())},
+                        {"preset_sha256", presetFingerprint(preset, inputs)},
                         {"seed", preset.seed},
                         {"options", {{"mesh", mesh}, {"render", mesh && render}}},
                         {"job", jobToJson(preset.name, inputs)},

@@ -59,6 +59,12 @@ nlohmann::json libraryToJson(const ManifestInputs& inputs);
 // preset reads (shape images, blockouts). 64 hex digits (SHA-256).
 std::string bakeInputHash(const Preset& preset, bool mesh, bool render, const std::filesystem::path& base_dir);
 
+// The preset's one fingerprint: SHA-256 (64 hex digits) of the resolved preset
+// with its input paths relative to the inputs' base folder (the preset file's
+// folder by default), so it does not depend on where the checkout lives. The
+// manifest records it as inputs.preset_sha256 and renders as rockbake:preset_hash.
+std::string presetFingerprint(const Preset& preset, const ManifestInputs& inputs);
+
 // What an asset folder held before a bake: lets the manifest list exactly the
 // files the bake wrote (new ones, and ones replaced since: atomic writes give
 // every written file a new inode and time stamp).

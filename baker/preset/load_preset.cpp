@@ -3,13 +3,12 @@
 // source position, so every error can say where it is.
 #include "preset/load_preset.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -17,11 +16,9 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "io/mesh_reader.h"
+#include "core/did_you_mean.h"
+#include "core/error.h"
 #include "preset/yaml_text.h"
-#include "sim/voxel_rock.h"
-#include "util/did_you_mean.h"
-#include "util/error.h"
 
 namespace rockbake {
 namespace {
@@ -55,6 +52,8 @@ struct Source {
   std::vector<std::pair<std::string, std::string>> overrides;
   // Linting: problems are recorded here and validation goes on; null: the first one throws.
   std::vector<InputError>* problems = nullptr;
+  // Where every key read was written (Preset::locations), when set.
+  std::map<std::string, SourceLocation>* locations = nullptr;
 
   const std::string& file() const { return origins.front().file; }
   const std::filesystem::path& folder() const { return origins.front().folder; }
@@ -94,7 +93,9 @@ class Field {
   }
 
   Field at(const std::string& key) const {
-    return Field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
+    Field field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
+    if (source_->locations && field.defined()) source_->locations->emplace(field.path(), field.location());
+    return field;
   }
   bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
   // The value of a key that must be given. A key written with no value is reported at the key (an
@@ -534,19 +535,6 @@ void readShape(const Field& f, Preset& p) {
     if (!std::filesystem::is_regular_file(mesh.path))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
     if (k.has("scale")) mesh.scale = k.at("scale").positive();
-    // Read it now, so a broken blockout stops the bake before anything is written.
-    try {
-      const TriangleMesh triangles = readTriangleMesh(mesh.path);
-      const std::vector<OpenEdge> open = findOpenEdges(triangles);
-      if (!open.empty())
-        k.at("path").fail(fmt::format("{} is not closed: {} edges are not shared by exactly two consistently "
-                                      "oriented faces (e.g. vertices {} and {}, used {} times)",
-                                      mesh.path.string(), open.size(), open[0].a + 1, open[0].b + 1, open[0].uses),
-                          "close the holes and make the normals consistent in the modelling package");
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const InputError*>(&e)) throw;
-      k.at("path").fail(e.what());
-    }
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
@@ -602,7 +590,8 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     const Field g = root.at("grid");
     g.expectMap({"size", "resolution", "ground"});
     if (g.has("size")) p.grid.size = g.at("size").positiveVec3();
-    if (g.has("resolution")) p.grid.resolution = int(g.at("resolution").integer(8, 2048));
+    if (g.has("resolution"))
+      p.grid.resolution = int(g.at("resolution").integer(GridParams::kMinResolution, GridParams::kMaxResolution));
     if (g.has("ground")) p.grid.ground = g.at("ground").boolean();
   });
   const double h = std::max({p.grid.size[0], p.grid.size[1], p.grid.size[2]}) / p.grid.resolution;
@@ -795,20 +784,6 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     }
   });
 
-  // Refuse a grid this machine cannot hold before anything is allocated.
-  validatePart(source, [&] {
-    const GridLayout layout = computeGridLayout(p);
-    const std::uint64_t needed = estimateSimulationBytes(layout);
-    const std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
-    if (needed > physical / 10 * 6) {
-      const Field where =
-          root.has("grid") && root.at("grid").has("resolution") ? root.at("grid").at("resolution") : root;
-      where.fail("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" + std::to_string(layout.nz) +
-                     " grid needs about " + std::to_string(needed >> 20) + " MiB; this machine has " +
-                     std::to_string(physical >> 20) + " MiB",
-                 "lower grid.resolution (or --resolution)");
-    }
-  });
   return p;
 }
 
@@ -1019,8 +994,11 @@ std::string readPresetFile(const std::filesystem::path& file) {
 
 Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
   PresetTree tree = readPresetTree(yaml_text, file, overrides);
+  std::map<std::string, SourceLocation> locations;
+  tree.source.locations = &locations;
   Preset preset = validate(tree.root, tree.source, std::filesystem::absolute(file));
   preset.sources = std::move(tree.files);
+  preset.locations = std::move(locations);
   return preset;
 }
 

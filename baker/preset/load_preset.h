@@ -13,8 +13,7 @@
 // problem in a value a base preset gave is located in that base. Unknown keys
 // are rejected with a "did you mean" suggestion. Relative paths (shape.image.path,
 // shape.mesh.path) are resolved against the folder of the file that gives them
-// and must exist. A grid too large for this machine's memory is refused here,
-// before anything is allocated.
+// and must exist; reading them is the inputs stage's (inputs/resolve_shape.h).
 #pragma once
 
 #include <cstdint>
@@ -23,8 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "preset/preset.h"
-#include "util/error.h"
 
 namespace rockbake {
 

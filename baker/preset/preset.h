@@ -6,18 +6,21 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "core/error.h"
+#include "core/vec3.h"
+
 namespace rockbake {
 
-using Vec3d = std::array<double, 3>;
-
 struct GridParams {
+  static constexpr int kMinResolution = 8, kMaxResolution = 2048;
   Vec3d size{4.0, 4.0, 6.0};  // simulation domain, world units, all > 0
-  int resolution = 96;        // voxels along the longest side, 8..2048
+  int resolution = 96;        // voxels along the longest side, kMinResolution..kMaxResolution
   bool ground = true;         // false: free-floating rock, rockfall off
 };
 
@@ -194,14 +197,9 @@ struct RenderParams {
   int turntable_frames = 0;  // 0: no turntable
 };
 
-struct Preset {
-  std::filesystem::path file;  // where it was read from
-  // Every file it was read from, absolute: the preset first, then the bases it
-  // extends, nearest first (what a re-bake must watch for changes).
-  std::vector<std::filesystem::path> sources;
-  int schema = 1;    // `rockbake:` version
-  std::string name;  // [a-z0-9_-]+
-  std::uint64_t seed = 0;
+// What the simulation reads (SPEC §2): everything that decides the voxels.
+struct SimParams {
+  std::uint64_t seed = 0;  // every random choice derives from (seed, purpose, ...)
   GridParams grid;
   ShapeParams shape;
   DurabilityParams durability;
@@ -210,10 +208,29 @@ struct Preset {
   RockfallParams rockfall;
   ColluviumParams colluvium;
   StopParams stop;
+};
+
+// A validated preset: the simulation's parameters and those of the stages
+// after it, each stage's in its own struct. Stages take the part they need
+// (the simulation a SimParams, the mesh stage MeshParams and BakeParams, ...).
+struct Preset : SimParams {
+  std::filesystem::path file;  // where it was read from
+  // Every file it was read from, absolute: the preset first, then the bases it
+  // extends, nearest first (what a re-bake must watch for changes).
+  std::vector<std::filesystem::path> sources;
+  int schema = 1;    // `rockbake:` version
+  std::string name;  // [a-z0-9_-]+
   MeshParams mesh;
   BakeParams bake;
   std::vector<std::string> exports{"ply", "obj", "glb", "vdb"};
   RenderParams render;
+
+  // Where each key the file gave was written, by key path ("shape.image.path"),
+  // so that later stages place their errors too (an unreadable image, a shape
+  // that covers no voxel).
+  std::map<std::string, SourceLocation> locations;
+  // The location of `key_path`, or of its nearest recorded parent, else the file.
+  SourceLocation locate(const std::string& key_path) const;
 };
 
 }  // namespace rockbake

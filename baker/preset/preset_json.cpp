@@ -156,14 +156,4 @@ json presetToJson(const Preset& p) {
   return out;
 }
 
-std::string presetHash(const json& resolved) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;
-  for (unsigned char c : resolved.dump()) hash = (hash ^ c) * 0x100000001b3ull;
-  return fmt::format("{:016x}", hash);
-}
-
-std::string presetHash(const Preset& preset) {
-  return presetHash(presetToJson(preset));
-}
-
 }  // namespace rockbake

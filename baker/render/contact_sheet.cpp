@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/font_text.h"
+#include "render/font_text.h"
 
 namespace rockbake {
 namespace {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "io/png_image.h"
+#include "core/png_image.h"
 
 namespace rockbake {
 

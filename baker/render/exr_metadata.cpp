@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -5,9 +5,9 @@
 #include <system_error>
 #include <thread>
 
-#include "render/color.h"
 #include "render/exr_metadata.h"
 #include "render/povray.h"
+#include "render/preview.h"
 #include "render/scene.h"
 
 #ifndef ROCKBAKE_VERSION

@@ -1,4 +1,5 @@
-// The render stage (SPEC §4): scene → POV-Ray → EXR with metadata → OCIO PNG
+// The render stage takes AssetMeshes and RenderParams and gives renders
+// (SPEC §4): scene → POV-Ray → EXR with metadata → OCIO PNG
 // preview; optionally a turntable and its contact sheet.
 #pragma once
 
@@ -9,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 #include "preset/preset.h"
 
 namespace rockbake {

@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -17,7 +17,7 @@
 #include <string>
 #include <string_view>
 
-#include "mesh/surface_mesh.h"
+#include "core/surface_mesh.h"
 
 namespace rockbake {
 

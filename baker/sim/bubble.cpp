@@ -107,6 +107,18 @@ void flatten(const BubbleSpec& spec, double h, double weight, std::vector<Bubble
 
 }  // namespace
 
+int bubbleReach(const BubbleSpec& spec, double h) {
+  if (spec.kind == BubbleSpec::Kind::Collection) {
+    int reach = 0;
+    for (const auto& m : spec.members) reach = std::max(reach, bubbleReach(m.bubble, h));
+    return reach;
+  }
+  const int axes = spec.kind == BubbleSpec::Kind::Sphere ? 1 : 3;
+  double extent = 0.0;
+  for (int a = 0; a < axes; ++a) extent = std::max(extent, spec.extents[std::size_t(a)]);
+  return int(std::floor(extent / h + kSlack));
+}
+
 BubbleEstimator makeBubbleEstimator(const BubbleSpec& spec, double h) {
   BubbleEstimator estimator;
   flatten(spec, h, 1.0, estimator.members);

@@ -51,6 +51,10 @@ struct BubbleEstimator {
   int reach = 0;  // largest member reach
 };
 
+// The largest offset a preset bubble reaches along any axis at voxel size h,
+// in voxels, without building it: the `reach` makeBubbleEstimator gives.
+int bubbleReach(const BubbleSpec& spec, double h);
+
 // Builds a preset bubble at voxel size h (world units per voxel).
 BubbleEstimator makeBubbleEstimator(const BubbleSpec& spec, double h);
 

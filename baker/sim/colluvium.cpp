@@ -4,7 +4,7 @@
 #include <deque>
 #include <numbers>
 
-#include "util/hash.h"
+#include "core/hash.h"
 
 namespace rockbake {
 namespace {

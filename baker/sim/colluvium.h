@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 

@@ -11,8 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/voxel_rock.h"
 #include "sim/bubble.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 

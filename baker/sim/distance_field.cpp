@@ -9,7 +9,7 @@
 #include <openvdb/tools/ValueTransformer.h>
 #include <tbb/parallel_for.h>
 
-#include "io/openvdb_support.h"
+#include "core/openvdb_support.h"
 
 namespace rockbake {
 

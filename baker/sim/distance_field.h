@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/voxel_rock.h"
+#include "core/voxel_rock.h"
 
 namespace rockbake {
 

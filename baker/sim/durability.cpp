@@ -7,8 +7,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/hash.h"
 #include "sim/distance_field.h"
-#include "util/hash.h"
 
 namespace rockbake {
 

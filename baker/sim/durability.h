@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 

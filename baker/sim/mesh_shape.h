@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/mesh_reader.h"
-#include "sim/voxel_rock.h"
+#include "core/voxel_rock.h"
+#include "inputs/mesh_reader.h"
 
 namespace rockbake {
 

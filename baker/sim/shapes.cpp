@@ -7,13 +7,11 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
-#include "io/mesh_reader.h"
-#include "io/png_image.h"
+#include "core/hash.h"
 #include "sim/distance_field.h"
 #include "sim/durability.h"
+#include "sim/grid_layout.h"
 #include "sim/mesh_shape.h"
-#include "util/error.h"
-#include "util/hash.h"
 
 namespace rockbake {
 namespace {
@@ -24,10 +22,11 @@ constexpr double kEps = 1e-9;
 using InsideTest = std::function<bool(double x, double y, double z)>;
 
 // Inside tests in world coordinates; (cx, cy) is the centre, bz the base.
-InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, const Preset& preset) {
+InsideTest insideTest(const ResolvedShape& shape, double cx, double cy, double bz, const SimParams& preset) {
   struct Visitor {
     double cx, cy, bz;
-    const Preset& preset;
+    const ResolvedShape& shape;
+    const SimParams& preset;
 
     InsideTest operator()(const BoxShape& b) const {
       const Vec3d s = b.size;
@@ -57,16 +56,8 @@ InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, co
       };
     }
     InsideTest operator()(const ImageShape& img) const {
-      GrayImage image;
-      try {
-        image = readPngGray(img.path);
-      } catch (const std::exception& e) {
-        throw InputError({preset.file.string()}, "shape.image.path", e.what(),
-                         "give a readable black-and-white PNG; paths are relative to the preset");
-      }
-      if (image.width <= 0 || image.height <= 0)
-        throw InputError({preset.file.string()}, "shape.image.path", "the image " + img.path.string() + " is empty");
-      const auto white = [image](int px, int py) {
+      const GrayImage& image = shape.image;
+      const auto white = [&image](int px, int py) {
         return px >= 0 && py >= 0 && px < image.width && py < image.height && image.at(px, py) >= 128;
       };
       const double W = image.width, H = image.height;
@@ -91,22 +82,15 @@ InsideTest insideTest(const ShapeKind& kind, double cx, double cy, double bz, co
     }
     InsideTest operator()(const MeshShape&) const { return {}; }  // voxelized as a whole, below
   };
-  return std::visit(Visitor{cx, cy, bz, preset}, kind);
+  return std::visit(Visitor{cx, cy, bz, shape, preset}, shape.params.kind);
 }
 
-// The blockout in world units: scaled, its bounding box centred on (cx, cy)
-// and resting at z = bz.
-TriangleMesh placeMesh(const MeshShape& shape, const Vec3d& center, const Preset& preset) {
-  TriangleMesh mesh;
-  try {
-    mesh = readTriangleMesh(shape.path);
-  } catch (const std::exception& e) {
-    throw InputError({preset.file.string()}, "shape.mesh.path", e.what());
-  }
+// The blockout (world units) with its bounding box centred on (cx, cy) and
+// resting at z = bz.
+TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
   Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (auto& p : mesh.positions)
     for (int a = 0; a < 3; ++a) {
-      p[std::size_t(a)] *= shape.scale;
       lo[std::size_t(a)] = std::min(lo[std::size_t(a)], p[std::size_t(a)]);
       hi[std::size_t(a)] = std::max(hi[std::size_t(a)], p[std::size_t(a)]);
     }
@@ -143,20 +127,20 @@ void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const 
 
 }  // namespace
 
-VoxelRock buildInitialRock(const Preset& preset) {
+VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) {
   VoxelRock rock;
   rock.layout = computeGridLayout(preset);
   const GridLayout& g = rock.layout;
   const Vec3d& domain = preset.grid.size;
-  const Vec3d center = preset.shape.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
+  const Vec3d center = shape.params.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
   rock.material.assign(g.cellCount(), Material::Air);
   std::vector<std::uint8_t> mesh_inside;
   InsideTest inside;
-  if (const auto* blockout = std::get_if<MeshShape>(&preset.shape.kind)) {
-    mesh_inside = voxelizeMesh(placeMesh(*blockout, center, preset), g);
+  if (std::holds_alternative<MeshShape>(shape.params.kind)) {
+    mesh_inside = voxelizeMesh(placeMesh(shape.mesh, center), g);
     inside = [](double, double, double) { return false; };  // unused: the flags decide
   } else {
-    inside = insideTest(preset.shape.kind, center[0], center[1], center[2], preset);
+    inside = insideTest(shape, center[0], center[1], center[2], preset);
   }
 
   rock.integrity.assign(g.cellCount(), 1.f);
@@ -191,10 +175,7 @@ VoxelRock buildInitialRock(const Preset& preset) {
       }
   });
   if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end())
-    spdlog::warn("{}: the shape reaches beyond grid.size and was clipped to it", preset.file.string());
-  if (rock.count(Material::Rock) == 0)
-    throw InputError({preset.file.string()}, "shape", "the shape covers no voxel of the grid",
-                     "check its size and center against grid.size, or raise grid.resolution");
+    spdlog::warn("the shape reaches beyond grid.size and was clipped to it");
 
   if (preset.durability.rind) rock.rind = rindCoverage(rock, preset.durability.rind->depth);
   assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0),

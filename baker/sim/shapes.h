@@ -1,15 +1,18 @@
-// The initial rock (SPEC §2.8): a primitive or an image voxelized into the
-// grid of computeGridLayout(preset), integrity 1, durability from the graph.
+// The initial rock (SPEC §2.8): a resolved shape (inputs/resolve_shape.h)
+// voxelized into the grid of computeGridLayout(params), integrity 1,
+// durability from the graph.
 #pragma once
 
+#include "core/voxel_rock.h"
+#include "inputs/resolve_shape.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 
 // A voxel is rock when its centre lies inside the shape. Rock is kept inside
-// the preset's domain (grid.size); a shape reaching past it is clipped there.
-// Throws InputError when the image cannot be read or the shape covers no voxel.
-VoxelRock buildInitialRock(const Preset& preset);
+// the domain (grid.size); a shape reaching past it is clipped there (with a
+// warning). The rock may be empty when the shape covers no voxel centre: the
+// caller decides whether that is an error.
+VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& params);
 
 }  // namespace rockbake

@@ -28,7 +28,7 @@ struct BubbleGraph {
   int reach = 0;
 };
 
-std::vector<BubbleEstimator> buildEstimators(const Preset& preset, double h, int& reach) {
+std::vector<BubbleEstimator> buildEstimators(const SimParams& preset, double h, int& reach) {
   std::vector<BubbleEstimator> estimators;
   reach = 1;  // exposure looks at face neighbours even for sub-voxel bubbles
   for (const auto& band : preset.bubbles) {
@@ -38,7 +38,7 @@ std::vector<BubbleEstimator> buildEstimators(const Preset& preset, double h, int
   return estimators;
 }
 
-BubbleGraph bindBubbleGraph(const Preset& preset, const GridLayout& g, const AirField& field,
+BubbleGraph bindBubbleGraph(const SimParams& preset, const GridLayout& g, const AirField& field,
                             const std::vector<BubbleEstimator>& estimators) {
   BubbleGraph graph;
   for (std::size_t b = 0; b < preset.bubbles.size(); ++b) {
@@ -125,15 +125,15 @@ class TrackedCells {
 
 }  // namespace
 
-int plannedCycles(const Preset& preset, double h) {
+int plannedCycles(const SimParams& preset, double h) {
   if (preset.stop.cycles) return *preset.stop.cycles;
   // A whisker of tolerance so that time = 3 at h = 0.1 is 30 cycles, not 31.
   return std::max(1, int(std::ceil(preset.stop.time.value_or(0.0) / h - 1e-9)));
 }
 
 struct WeatheringSimulation::State {
-  State(VoxelRock initial, const Preset& p)
-      : preset(p),
+  State(VoxelRock initial, SimParams p)
+      : preset(std::move(p)),
         rock(std::move(initial)),
         estimators(buildEstimators(preset, rock.layout.h, reach)),
         field(rock, reach),
@@ -158,7 +158,7 @@ struct WeatheringSimulation::State {
 
   using CellPredicate = std::function<bool(int, int, int)>;
 
-  const Preset& preset;
+  const SimParams preset;  // a copy: the simulation owns its parameters
   VoxelRock rock;
   int reach = 1;
   std::vector<BubbleEstimator> estimators;
@@ -176,8 +176,8 @@ struct WeatheringSimulation::State {
   std::vector<std::uint8_t> decimate;  // per exposed voxel, this cycle
 };
 
-WeatheringSimulation::WeatheringSimulation(VoxelRock rock, const Preset& preset)
-    : state_(std::make_unique<State>(std::move(rock), preset)) {}
+WeatheringSimulation::WeatheringSimulation(VoxelRock rock, SimParams params)
+    : state_(std::make_unique<State>(std::move(rock), std::move(params))) {}
 WeatheringSimulation::~WeatheringSimulation() = default;
 
 const VoxelRock& WeatheringSimulation::rock() const {
@@ -201,7 +201,7 @@ CycleStats WeatheringSimulation::step() {
   State& st = *state_;
   VoxelRock& rock = st.rock;
   const GridLayout& g = rock.layout;
-  const Preset& preset = st.preset;
+  const SimParams& preset = st.preset;
 
   // Directability (SPEC §2.4): a keyframe whose time has come replaces the
   // graph for all rock still standing; integrities are kept.
@@ -314,7 +314,7 @@ CycleStats WeatheringSimulation::step() {
   return stats;
 }
 
-WeatheringResult weatherRock(VoxelRock rock, const Preset& preset, const CycleObserver& observe) {
+WeatheringResult weatherRock(VoxelRock rock, const SimParams& preset, const CycleObserver& observe) {
   WeatheringSimulation simulation(std::move(rock), preset);
   WeatheringResult result;
   while (!simulation.finished()) {
@@ -325,7 +325,7 @@ WeatheringResult weatherRock(VoxelRock rock, const Preset& preset, const CycleOb
   return result;
 }
 
-std::vector<float> exposureField(const VoxelRock& rock, const Preset& preset) {
+std::vector<float> exposureField(const VoxelRock& rock, const SimParams& preset) {
   const GridLayout& g = rock.layout;
   int reach = 1;
   const std::vector<BubbleEstimator> estimators = buildEstimators(preset, g.h, reach);

@@ -1,3 +1,6 @@
+// The simulation stage: takes the initial rock and SimParams, gives the
+// weathered rock and per-cycle statistics; no I/O.
+//
 // The weathering cycles (SPEC §2.5–2.9): each cycle estimates the exposure
 // of every exposed rock voxel from the state at the cycle's start, lowers its
 // integrity by w / D, and decimates all voxels whose integrity reached 0
@@ -14,8 +17,8 @@
 #include <memory>
 #include <vector>
 
+#include "core/voxel_rock.h"
 #include "preset/preset.h"
-#include "sim/voxel_rock.h"
 
 namespace rockbake {
 
@@ -42,14 +45,13 @@ struct WeatheringResult {
 };
 
 // Number of cycles a preset asks for at voxel size h: cycles, or ceil(time / h).
-int plannedCycles(const Preset& preset, double h);
+int plannedCycles(const SimParams& preset, double h);
 
 // One simulation, cycle by cycle: for callers that watch or time single
 // cycles. Setup (bit field, exposed set) is done once in the constructor.
 class WeatheringSimulation {
  public:
-  // `preset` is read throughout and must outlive the simulation.
-  WeatheringSimulation(VoxelRock rock, const Preset& preset);
+  WeatheringSimulation(VoxelRock rock, SimParams params);
   ~WeatheringSimulation();
   WeatheringSimulation(const WeatheringSimulation&) = delete;
   WeatheringSimulation& operator=(const WeatheringSimulation&) = delete;
@@ -67,10 +69,10 @@ class WeatheringSimulation {
 
 using CycleObserver = std::function<void(const CycleStats&)>;
 
-WeatheringResult weatherRock(VoxelRock rock, const Preset& preset, const CycleObserver& observe = {});
+WeatheringResult weatherRock(VoxelRock rock, const SimParams& preset, const CycleObserver& observe = {});
 
 // Calibrated exposure s of every voxel of `rock` (0 where not exposed rock),
 // using the preset's bubble graph: the curvature attribute later stages bake.
-std::vector<float> exposureField(const VoxelRock& rock, const Preset& preset);
+std::vector<float> exposureField(const VoxelRock& rock, const SimParams& preset);
 
 }  // namespace rockbake

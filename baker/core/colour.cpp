@@ -1,0 +1,86 @@
+#include "core/colour.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
+#define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
+#endif
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace rockbake {
+namespace {
+
+struct Processors {
+  OCIO::ConstCPUProcessorRcPtr to_linear;   // sRGB - Texture -> scene_linear
+  OCIO::ConstCPUProcessorRcPtr to_display;  // scene_linear -> default display / view
+};
+
+const Processors& processorsFor(const std::filesystem::path& config_path) {
+  static std::mutex mutex;
+  static std::map<std::string, Processors> cache;
+  const std::string key = config_path.string();
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  try {
+    OCIO::ConstConfigRcPtr config = OCIO::Config::CreateFromFile(key.c_str());
+    config->validate();
+    Processors p;
+    p.to_linear = config->getProcessor("sRGB - Texture", OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
+    const char* display = config->getDefaultDisplay();
+    auto dv = OCIO::DisplayViewTransform::Create();
+    dv->setSrc(OCIO::ROLE_SCENE_LINEAR);
+    dv->setDisplay(display);
+    dv->setView(config->getDefaultView(display));
+    p.to_display = config->getProcessor(dv)->getDefaultCPUProcessor();
+    return cache.emplace(key, std::move(p)).first->second;
+  } catch (const OCIO::Exception& e) {
+    throw std::runtime_error("OpenColorIO config " + key + ": " + e.what());
+  }
+}
+
+std::array<float, 3> apply(const OCIO::ConstCPUProcessorRcPtr& p, const std::array<float, 3>& in) {
+  float px[3] = {in[0], in[1], in[2]};
+  p->applyRGB(px);
+  return {px[0], px[1], px[2]};
+}
+}  // namespace
+
+std::filesystem::path defaultOcioConfig() {
+  return std::filesystem::path(ROCKBAKE_RENDER_TEMPLATES_DIR) / "ocio" / "config.ocio";
+}
+
+std::array<float, 3> srgbToSceneLinear(const std::array<float, 3>& srgb, const std::filesystem::path& cfg) {
+  return apply(processorsFor(cfg).to_linear, srgb);
+}
+
+std::array<float, 3> sceneLinearToDisplay(const std::array<float, 3>& linear, const std::filesystem::path& cfg) {
+  return apply(processorsFor(cfg).to_display, linear);
+}
+
+void sceneLinearToDisplay(std::vector<float>& rgb, int width, int height, const std::filesystem::path& cfg) {
+  if (rgb.size() != std::size_t(width) * std::size_t(height) * 3)
+    throw std::invalid_argument("sceneLinearToDisplay: the buffer does not hold width × height RGB pixels");
+  OCIO::PackedImageDesc desc(rgb.data(), width, height, 3);
+  processorsFor(cfg).to_display->apply(desc);
+}
+
+float linearToSrgb(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgbToLinear(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+}  // namespace rockbake

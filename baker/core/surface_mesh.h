@@ -1,0 +1,42 @@
+// Meshes as plain data between the inputs, mesh, export and render stages (SPEC §3).
+// World units, z up (the simulation's frame). Colours are linear RGB in [0, 1].
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rockbake {
+
+struct SurfaceMesh {
+  std::string name;                                     // "rock" or "colluvium"
+  std::vector<std::array<float, 3>> positions;          // world units
+  std::vector<std::array<float, 3>> normals;            // unit length, outward
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
+  // Quad faces, counter-clockwise seen from outside. Only the extraction stage's
+  // quad-dominant output has them (faces = triangles ∪ quads); subdivideSurface
+  // returns triangles only, and the exporters and the renderer read triangles only.
+  std::vector<std::array<std::uint32_t, 4>> quads;
+  // Per-vertex baked attributes.
+  std::vector<float> durability;             // D at the surface (0 on colluvium)
+  std::vector<float> colluvium;              // 0..1 coverage
+  std::vector<float> curvature;              // calibrated exposure s, 0..1 (½ flat)
+  std::vector<float> altitude;               // normalised altitude, 0 at the ground, 1 at the top of grid.size
+  std::vector<std::array<float, 3>> colors;  // linear RGB from the preset's palette
+};
+
+// A triangle soup with shared vertices, double precision: an artist's blockout
+// as read (file units), before it is voxelized.
+struct TriangleMesh {
+  std::vector<std::array<double, 3>> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+struct AssetMeshes {
+  SurfaceMesh rock;
+  SurfaceMesh colluvium;                            // empty when there is none
+  std::array<float, 3> bounds_min{}, bounds_max{};  // over both meshes, world units
+};
+
+}  // namespace rockbake

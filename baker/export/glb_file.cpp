@@ -1,0 +1,121 @@
+#include "export/glb_file.h"
+
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include <tiny_gltf.h>
+
+#include "core/atomic_file.h"
+
+namespace rockbake {
+namespace {
+
+// Appends `bytes` to the single buffer as a new view; returns the view's index.
+int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
+  auto& data = model.buffers[0].data;
+  while (data.size() % 4) data.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  data.insert(data.end(), static_cast<const unsigned char*>(bytes), static_cast<const unsigned char*>(bytes) + size);
+  model.bufferViews.push_back(view);
+  return int(model.bufferViews.size() - 1);
+}
+
+int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, int components, bool bounds) {
+  tinygltf::Accessor a;
+  a.bufferView = addView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = values.size() / std::size_t(components);
+  a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
+  if (bounds) {
+    a.minValues.assign(std::size_t(components), std::numeric_limits<double>::max());
+    a.maxValues.assign(std::size_t(components), std::numeric_limits<double>::lowest());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const std::size_t c = i % std::size_t(components);
+      a.minValues[c] = std::min(a.minValues[c], double(values[i]));
+      a.maxValues[c] = std::max(a.maxValues[c], double(values[i]));
+    }
+  }
+  model.accessors.push_back(a);
+  return int(model.accessors.size() - 1);
+}
+
+void addSurface(tinygltf::Model& model, const SurfaceMesh& m) {
+  const std::size_t n = m.positions.size();
+  if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
+      m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
+    throw std::runtime_error("the " + m.name + " mesh lacks normals, colours or attributes, or has quads");
+  std::vector<float> positions, normals, colors;
+  positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = m.positions[i];
+    const auto& q = m.normals[i];
+    positions.insert(positions.end(), {p[0], p[2], -p[1]});  // z-up → y-up
+    normals.insert(normals.end(), {q[0], q[2], -q[1]});
+    colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
+  }
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = addFloatAccessor(model, positions, 3, true);
+  prim.attributes["NORMAL"] = addFloatAccessor(model, normals, 3, false);
+  prim.attributes["COLOR_0"] = addFloatAccessor(model, colors, 3, false);
+  prim.attributes["_DURABILITY"] = addFloatAccessor(model, m.durability, 1, false);
+  prim.attributes["_COLLUVIUM"] = addFloatAccessor(model, m.colluvium, 1, false);
+  prim.attributes["_CURVATURE"] = addFloatAccessor(model, m.curvature, 1, false);
+  prim.attributes["_ALTITUDE"] = addFloatAccessor(model, m.altitude, 1, false);
+
+  tinygltf::Accessor indices;
+  indices.bufferView = addView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),
+                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  indices.count = 3 * m.triangles.size();
+  indices.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(indices);
+  prim.indices = int(model.accessors.size() - 1);
+
+  tinygltf::Material material;
+  material.name = m.name;
+  material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  material.pbrMetallicRoughness.metallicFactor = 0.0;
+  material.pbrMetallicRoughness.roughnessFactor = 0.9;
+  model.materials.push_back(material);
+  prim.material = int(model.materials.size() - 1);
+
+  tinygltf::Mesh mesh;
+  mesh.name = m.name;
+  mesh.primitives.push_back(prim);
+  model.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = m.name;
+  node.mesh = int(model.meshes.size() - 1);
+  model.nodes.push_back(node);
+  model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
+}
+
+}  // namespace
+
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file) {
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "rockbake " ROCKBAKE_VERSION;
+  model.buffers.resize(1);
+  model.scenes.resize(1);
+  model.defaultScene = 0;
+  try {
+    for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
+      if (!m->positions.empty()) addSurface(model, *m);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(file.string() + ": " + e.what());
+  }
+  writeFileAtomically(file, [&](std::ostream& os) {
+    tinygltf::TinyGLTF gltf;
+    if (!gltf.WriteGltfSceneToStream(&model, os, false, true))
+      throw std::runtime_error(file.string() + ": tinygltf could not write the scene");
+  });
+}
+
+}  // namespace rockbake

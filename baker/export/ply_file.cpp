@@ -1,0 +1,60 @@
+#include "export/ply_file.h"
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/colour.h"
+
+namespace rockbake {
+namespace {
+
+template <typename T>
+void put(std::string& out, T value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));  // the project targets little-endian hosts (x86-64, arm64)
+  out.append(bytes, sizeof(T));
+}
+
+std::uint8_t srgb8(float linear) {
+  return std::uint8_t(std::lround(linearToSrgb(linear) * 255.0f));
+}
+
+}  // namespace
+
+void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
+  const std::size_t n = m.positions.size();
+  if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
+      m.curvature.size() != n || !m.quads.empty())
+    throw std::runtime_error(
+        fmt::format("{}: the {} mesh lacks normals, colours or attributes, or has quads", file.string(), m.name));
+  std::string out = fmt::format(
+      "ply\nformat binary_little_endian 1.0\ncomment rockbake {} surface; world units, z up; colours sRGB\n"
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+      "property float durability\nproperty float colluvium\nproperty float curvature\n"
+      "element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
+      m.name, n, m.triangles.size());
+  out.reserve(out.size() + n * 39 + m.triangles.size() * 13);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (float x : m.positions[i]) put(out, x);
+    for (float x : m.normals[i]) put(out, x);
+    for (float x : m.colors[i]) put(out, srgb8(x));
+    put(out, m.durability[i]);
+    put(out, m.colluvium[i]);
+    put(out, m.curvature[i]);
+  }
+  for (const auto& t : m.triangles) {
+    put(out, std::uint8_t(3));
+    for (std::uint32_t i : t) put(out, i);
+  }
+  writeFileAtomically(file, out);
+}
+
+}  // namespace rockbake

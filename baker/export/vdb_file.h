@@ -1,0 +1,35 @@
+// The rock as an OpenVDB file (SPEC §3 exports, §6 "bake writes" rock.vdb).
+// OpenVDB headers stay in the .cpp: they are heavy to compile.
+#pragma once
+
+#include <filesystem>
+
+#include "core/voxel_rock.h"
+
+namespace rockbake {
+
+struct SmoothedSdf;  // io/openvdb_support.h
+
+// Writes, atomically, one .vdb holding
+//   BoolGrid  "rock"        active, true on Material::Rock voxels
+//   BoolGrid  "colluvium"   active, true on Material::Colluvium voxels
+//   FloatGrid "durability"  rock voxels' durability, background 0
+//   FloatGrid "rock_sdf"    GRID_LEVEL_SET, negative inside, world units: the
+//                           mesh stage's smoothed field when `rock_sdf` is given
+//                           (the surface the meshes were made from), else a narrow
+//                           band (3 voxels each side) of the rock occupancy
+// Index space is the voxel (x, y, z) of the VoxelRock; every grid's transform
+// maps index (i, j, k) to layout.center(i, j, k). File metadata: creator
+// "rockbake", voxel_size h. The bytes are a pure function of the rock: the
+// archive's random UUID is replaced by one hashed from the rest of the file,
+// so the same rock gives the same file at any thread count.
+// Throws std::runtime_error on failure.
+void writeRockVdb(const VoxelRock& rock, const std::filesystem::path& file, const SmoothedSdf* rock_sdf = nullptr);
+
+// Reads a file written by writeRockVdb back into `layout`: material from the
+// "rock" and "colluvium" grids (Air elsewhere), durability from "durability",
+// integrity 1. Throws std::runtime_error if the file is unreadable, a grid is
+// missing, or the file's transform or voxels do not fit the layout.
+VoxelRock readRockVdb(const std::filesystem::path& file, const GridLayout& layout);
+
+}  // namespace rockbake

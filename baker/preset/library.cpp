@@ -1,0 +1,306 @@
+// Library file parsing: yaml-cpp nodes → plain LibraryEntry data, every read
+// located (file:line:column + key path) so every error says where it is.
+#include "preset/library.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/did_you_mean.h"
+#include "core/error.h"
+#include "core/sha256.h"
+#include "preset/yaml_text.h"
+
+namespace rockbake {
+namespace {
+
+// A node of the library file with its key path and position.
+class Node {
+ public:
+  Node(YAML::Node node, std::string path, const std::string& file, YAML::Mark fallback)
+      : node_(std::move(node)), path_(std::move(path)), file_(&file), mark_(fallback) {
+    if (node_.IsDefined() && !node_.Mark().is_null()) mark_ = node_.Mark();
+  }
+
+  const YAML::Node& yaml() const { return node_; }
+  const std::string& path() const { return path_; }
+  SourceLocation location() const {
+    if (mark_.is_null()) return {*file_, 0, 0};
+    return {*file_, mark_.line + 1, mark_.column + 1};
+  }
+  [[noreturn]] void fail(const std::string& problem, const std::string& hint = {}) const {
+    throw InputError(location(), path_, problem, hint);
+  }
+
+  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
+  Node at(const std::string& key) const { return Node(node_[key], join(key), *file_, mark_); }
+  std::size_t size() const {
+    if (!node_.IsSequence()) fail("expected a list, found " + describe(node_));
+    return node_.size();
+  }
+  Node item(std::size_t i) const { return Node(node_[i], join(std::to_string(i)), *file_, mark_); }
+
+  // A map whose keys are all in `allowed`, none repeated; returns its keys as nodes, in order.
+  std::vector<Node> keys(const std::vector<std::string>& allowed) const {
+    if (!node_.IsMap()) fail("expected a map (key: value, ...), found " + describe(node_));
+    std::vector<Node> seen;
+    for (const auto& entry : node_) {
+      Node key(entry.first, path_, *file_, mark_);
+      if (!entry.first.IsScalar()) key.fail("expected a key name, found " + describe(entry.first));
+      const std::string name = entry.first.Scalar();
+      key.path_ = join(name);
+      for (const auto& s : seen)
+        if (s.node_.Scalar() == name)
+          key.fail("'" + name + "' is given twice (first on line " + std::to_string(s.mark_.line + 1) + ")",
+                   "keep one of them");
+      if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+        if (const auto best = closestName(name, allowed))
+          key.fail("unknown key '" + name + "'; did you mean '" + *best + "'?",
+                   "valid keys here: " + joinNames(allowed));
+        key.fail("unknown key '" + name + "'", "valid keys here: " + joinNames(allowed));
+      }
+      seen.push_back(key);
+    }
+    return seen;
+  }
+
+  std::string string() const {
+    if (!node_.IsScalar()) fail("expected text, found " + describe(node_));
+    return node_.Scalar();
+  }
+  std::uint64_t unsigned64() const {
+    if (const auto value = unsignedValue(node_)) return *value;
+    fail("expected a whole number >= 0, found " + describe(node_));
+  }
+
+ private:
+  std::string join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  YAML::Node node_;
+  std::string path_;
+  const std::string* file_;
+  YAML::Mark mark_;
+};
+
+constexpr std::uint64_t kMaxSeedCount = 100000;
+
+std::vector<std::uint64_t> readSeeds(const Node& seeds) {
+  std::vector<std::uint64_t> out;
+  if (seeds.yaml().IsMap()) {
+    seeds.keys({"from", "count"});
+    if (!seeds.has("from") || !seeds.has("count"))
+      seeds.fail("a seed range needs both 'from' and 'count'", "for example seeds: {from: 1, count: 8}");
+    const std::uint64_t from = seeds.at("from").unsigned64();
+    const Node count_node = seeds.at("count");
+    const std::uint64_t count = count_node.unsigned64();
+    if (count < 1 || count > kMaxSeedCount)
+      count_node.fail("must be from 1 to " + std::to_string(kMaxSeedCount) + ", found " + std::to_string(count));
+    if (from > std::numeric_limits<std::uint64_t>::max() - (count - 1))
+      seeds.fail("the range runs past the largest seed (2^64 - 1)");
+    for (std::uint64_t i = 0; i < count; ++i) out.push_back(from + i);
+    return out;
+  }
+  if (!seeds.yaml().IsSequence())
+    seeds.fail("expected a list of seeds or {from, count}, found " + describe(seeds.yaml()),
+               "for example seeds: [1, 2, 3] or seeds: {from: 1, count: 8}");
+  if (seeds.size() == 0) seeds.fail("the list of seeds is empty", "leave 'seeds' out to use the preset's own seed");
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    const std::uint64_t seed = seeds.item(i).unsigned64();
+    if (std::find(out.begin(), out.end(), seed) != out.end())
+      seeds.item(i).fail("seed " + std::to_string(seed) + " is listed twice");
+    out.push_back(seed);
+  }
+  return out;
+}
+
+// A YAML value as one line of flow text, the form --set takes.
+std::string flowText(const YAML::Node& value) {
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << value;
+  return out.c_str();
+}
+
+LibraryWedge readWedge(const Node& w, const std::string& file_label) {
+  w.keys({"name", "set"});
+  if (!w.has("name")) w.fail("a wedge needs a 'name' (it becomes part of the job name)");
+  LibraryWedge wedge;
+  const Node name = w.at("name");
+  wedge.name = name.string();
+  if (!isAssetName(wedge.name))
+    name.fail("'" + wedge.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes part of the asset folder's name");
+  if (!w.has("set") || w.at("set").yaml().IsNull()) return wedge;  // a wedge without overrides: the preset as is
+  const Node set = w.at("set");
+  for (const Node& key : set.keys({})) {
+    const std::string path = key.yaml().Scalar();
+    std::stringstream parts(path);
+    bool bad_path = path.empty() || path.back() == '.' || std::any_of(path.begin(), path.end(), [](char c) {
+                      return c == '=' || std::isspace(static_cast<unsigned char>(c));
+                    });
+    for (std::string part; std::getline(parts, part, '.');) bad_path = bad_path || part.empty();
+    if (bad_path)
+      key.fail("'" + path + "' is not a key path", "write dotted keys like colluvium.yield or bubbles.0.spheroidal");
+    wedge.sets.push_back(path + "=" + flowText(set.yaml()[path]));
+    const SourceLocation where = key.location();
+    wedge.set_origins.push_back(file_label + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) +
+                                " (wedge '" + wedge.name + "')");
+  }
+  return wedge;
+}
+
+std::string stemName(const std::filesystem::path& preset) {
+  std::string name;
+  for (char c : preset.stem().string()) {
+    const char lower = (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;
+    name += isAssetName(std::string(1, lower)) ? lower : '-';
+  }
+  return name;
+}
+
+LibraryEntry readEntry(const Node& e, const std::filesystem::path& base_dir, const std::string& file_label) {
+  if (!e.yaml().IsMap())
+    e.fail("expected a library entry (a map with 'preset', and optionally 'name', 'seeds', 'wedges'), found " +
+           describe(e.yaml()));
+  e.keys({"preset", "name", "seeds", "wedges"});
+  if (!e.has("preset")) e.fail("an entry needs 'preset' (a preset file, relative to the library file)");
+  LibraryEntry entry;
+  const Node preset = e.at("preset");
+  entry.preset = preset.string();
+  entry.preset_file = base_dir / entry.preset;
+  if (entry.preset.empty() || !std::filesystem::is_regular_file(entry.preset_file))
+    preset.fail("no preset file at " + entry.preset_file.string(), "preset paths are relative to the library file");
+
+  if (e.has("name")) {
+    const Node name = e.at("name");
+    entry.name = name.string();
+    if (!isAssetName(entry.name))
+      name.fail("'" + entry.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes the asset folders' names");
+  } else {
+    entry.name = stemName(entry.preset_file);
+    if (!isAssetName(entry.name)) preset.fail("cannot make a job name from this file name", "give the entry a 'name'");
+  }
+
+  if (e.has("seeds")) entry.seeds = readSeeds(e.at("seeds"));
+
+  if (e.has("wedges")) {
+    const Node wedges = e.at("wedges");
+    if (wedges.size() == 0) wedges.fail("the list of wedges is empty", "leave 'wedges' out to bake the preset as is");
+    for (std::size_t i = 0; i < wedges.size(); ++i) {
+      LibraryWedge wedge = readWedge(wedges.item(i), file_label);
+      for (const auto& other : entry.wedges)
+        if (other.name == wedge.name)
+          wedges.item(i).at("name").fail("wedge '" + wedge.name + "' is named twice in this entry");
+      entry.wedges.push_back(std::move(wedge));
+    }
+  }
+  return entry;
+}
+
+std::string jobName(const LibraryEntry& entry, const LibraryWedge* wedge, const std::uint64_t* seed) {
+  std::string name = entry.name;
+  if (wedge) name += "-" + wedge->name;
+  if (seed) name += "-s" + std::to_string(*seed);
+  return name;
+}
+
+}  // namespace
+
+Library parseLibrary(const std::string& yaml_text, const std::filesystem::path& file) {
+  const std::string label = file.string();
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw InputError({label, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1}, "",
+                     "malformed YAML: " + e.msg, "check the indentation and brackets there");
+  }
+  if (documents.size() > 1) {
+    const YAML::Mark mark = documents[1].Mark();
+    throw InputError({label, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1}, "",
+                     "a library holds one YAML document; a second one starts here",
+                     "remove the '---' and what follows");
+  }
+  const YAML::Node root_yaml = documents.empty() ? YAML::Node() : documents.front();
+  const Node root(root_yaml, "", label, YAML::Mark());
+  if (!root_yaml.IsSequence() || root_yaml.size() == 0)
+    throw InputError({label, 1, 1}, "", "a library must be a non-empty YAML list of entries",
+                     "for example:\n- preset: rock.yaml\n  seeds: [1, 2]");
+
+  Library library;
+  library.file = file;
+  library.sha256 = sha256Hex(yaml_text);
+  const std::filesystem::path base_dir = file.parent_path();
+  for (std::size_t i = 0; i < root.size(); ++i) library.entries.push_back(readEntry(root.item(i), base_dir, label));
+
+  // Two jobs with one name would bake into one folder: refuse before anything runs.
+  std::vector<std::pair<std::string, std::size_t>> names;  // job name, entry
+  for (std::size_t i = 0; i < library.entries.size(); ++i)
+    for (const auto& job : expandLibrary(Library{{}, {}, {library.entries[i]}})) {
+      const auto clash = std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == job.name; });
+      if (clash != names.end())
+        root.item(i).fail("job '" + job.name + "' is also made by entry " + std::to_string(clash->second),
+                          "every job needs its own asset folder: give one of the entries another 'name'");
+      names.emplace_back(job.name, i);
+    }
+  return library;
+}
+
+Library loadLibrary(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError({file.string()}, "", "cannot read the library file", "check the path");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseLibrary(text.str(), file);
+}
+
+std::vector<LibraryJob> expandLibrary(const Library& library) {
+  std::vector<LibraryJob> jobs;
+  for (std::size_t e = 0; e < library.entries.size(); ++e) {
+    const LibraryEntry& entry = library.entries[e];
+    const std::size_t seed_count = std::max<std::size_t>(1, entry.seeds.size());
+    const std::size_t wedge_count = std::max<std::size_t>(1, entry.wedges.size());
+    for (std::size_t s = 0; s < seed_count; ++s)
+      for (std::size_t w = 0; w < wedge_count; ++w) {
+        LibraryJob job;
+        job.entry = e;
+        if (!entry.seeds.empty()) job.seed = entry.seeds[s];
+        if (!entry.wedges.empty()) job.wedge = entry.wedges[w];
+        job.name = jobName(entry, job.wedge ? &*job.wedge : nullptr, job.seed ? &*job.seed : nullptr);
+        jobs.push_back(std::move(job));
+      }
+  }
+  return jobs;
+}
+
+Shard parseShard(const std::string& text) {
+  const auto bad = [&](const std::string& problem) -> Shard {
+    throw InputError({"--shard"}, "", "'" + text + "': " + problem,
+                     "write I/N with 0 <= I < N, for example --shard 0/4 for the first of four shards");
+  };
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return bad("expected I/N");
+  const auto number = [&](const std::string& part) -> long long {
+    if (part.empty() || part.size() > 9 ||
+        !std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      bad("'" + part + "' is not a whole number");
+    return std::stoll(part);
+  };
+  const long long index = number(text.substr(0, slash)), count = number(text.substr(slash + 1));
+  if (count < 1) return bad("N must be at least 1");
+  if (index >= count) return bad("I must be less than N (shards are numbered from 0)");
+  return {int(index), int(count)};
+}
+
+std::vector<LibraryJob> selectShard(const std::vector<LibraryJob>& jobs, const Shard& shard) {
+  std::vector<LibraryJob> mine;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    if (i % std::size_t(shard.count) == std::size_t(shard.index)) mine.push_back(jobs[i]);
+  return mine;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,2 @@
+// Must compile: the mesh stage comes after the simulation.
+#include "sim/weathering.h"
