@@ -400,3 +400,26 @@ TEST(Preset, ResolvedJsonHasEveryKeyWithDefaults) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// The reader is the schema: the JSON that `preset show` and stats.json write
+// reads back as the same preset, so the writer names no key the reader does
+// not know, and leaves out nothing it does.
+TEST(Preset, ItsJsonReadsBackAsTheSamePreset) {
+  int presets = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::sourceDir() / "presets")) {
+    if (entry.path().extension() != ".yaml" || entry.path().stem() == "base" || entry.path().stem() == "library")
+      continue;
+    const Preset preset = loadPreset(entry.path());
+    const nlohmann::json json = presetToJson(preset);
+    const Preset again = parsePreset(json.dump(), entry.path());
+    EXPECT_EQ(presetToJson(again), json) << entry.path();
+    ++presets;
+  }
+  EXPECT_GE(presets, 10);
+}
+
+}  // namespace
+}  // namespace rockbake

@@ -13,89 +13,22 @@
 #include "core/did_you_mean.h"
 #include "core/error.h"
 #include "core/sha256.h"
+#include "preset/yaml_field.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {
 namespace {
 
-// A node of the library file with its key path and position.
-class Node {
- public:
-  Node(YAML::Node node, std::string path, const std::string& file, YAML::Mark fallback)
-      : node_(std::move(node)), path_(std::move(path)), file_(&file), mark_(fallback) {
-    if (node_.IsDefined() && !node_.Mark().is_null()) mark_ = node_.Mark();
-  }
-
-  const YAML::Node& yaml() const { return node_; }
-  const std::string& path() const { return path_; }
-  SourceLocation location() const {
-    if (mark_.is_null()) return {*file_, 0, 0};
-    return {*file_, mark_.line + 1, mark_.column + 1};
-  }
-  [[noreturn]] void fail(const std::string& problem, const std::string& hint = {}) const {
-    throw InputError(location(), path_, problem, hint);
-  }
-
-  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
-  Node at(const std::string& key) const { return Node(node_[key], join(key), *file_, mark_); }
-  std::size_t size() const {
-    if (!node_.IsSequence()) fail("expected a list, found " + describe(node_));
-    return node_.size();
-  }
-  Node item(std::size_t i) const { return Node(node_[i], join(std::to_string(i)), *file_, mark_); }
-
-  // A map whose keys are all in `allowed`, none repeated; returns its keys as nodes, in order.
-  std::vector<Node> keys(const std::vector<std::string>& allowed) const {
-    if (!node_.IsMap()) fail("expected a map (key: value, ...), found " + describe(node_));
-    std::vector<Node> seen;
-    for (const auto& entry : node_) {
-      Node key(entry.first, path_, *file_, mark_);
-      if (!entry.first.IsScalar()) key.fail("expected a key name, found " + describe(entry.first));
-      const std::string name = entry.first.Scalar();
-      key.path_ = join(name);
-      for (const auto& s : seen)
-        if (s.node_.Scalar() == name)
-          key.fail("'" + name + "' is given twice (first on line " + std::to_string(s.mark_.line + 1) + ")",
-                   "keep one of them");
-      if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
-        if (const auto best = closestName(name, allowed))
-          key.fail("unknown key '" + name + "'; did you mean '" + *best + "'?",
-                   "valid keys here: " + joinNames(allowed));
-        key.fail("unknown key '" + name + "'", "valid keys here: " + joinNames(allowed));
-      }
-      seen.push_back(key);
-    }
-    return seen;
-  }
-
-  std::string string() const {
-    if (!node_.IsScalar()) fail("expected text, found " + describe(node_));
-    return node_.Scalar();
-  }
-  std::uint64_t unsigned64() const {
-    if (const auto value = unsignedValue(node_)) return *value;
-    fail("expected a whole number >= 0, found " + describe(node_));
-  }
-
- private:
-  std::string join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  YAML::Node node_;
-  std::string path_;
-  const std::string* file_;
-  YAML::Mark mark_;
-};
-
 constexpr std::uint64_t kMaxSeedCount = 100000;
 
-std::vector<std::uint64_t> readSeeds(const Node& seeds) {
+std::vector<std::uint64_t> readSeeds(const Field& seeds) {
   std::vector<std::uint64_t> out;
   if (seeds.yaml().IsMap()) {
-    seeds.keys({"from", "count"});
+    seeds.expectMap();
     if (!seeds.has("from") || !seeds.has("count"))
       seeds.fail("a seed range needs both 'from' and 'count'", "for example seeds: {from: 1, count: 8}");
     const std::uint64_t from = seeds.at("from").unsigned64();
-    const Node count_node = seeds.at("count");
+    const Field count_node = seeds.at("count");
     const std::uint64_t count = count_node.unsigned64();
     if (count < 1 || count > kMaxSeedCount)
       count_node.fail("must be from 1 to " + std::to_string(kMaxSeedCount) + ", found " + std::to_string(count));
@@ -126,17 +59,17 @@ std::string flowText(const YAML::Node& value) {
   return out.c_str();
 }
 
-LibraryWedge readWedge(const Node& w, const std::string& file_label) {
-  w.keys({"name", "set"});
-  if (!w.has("name")) w.fail("a wedge needs a 'name' (it becomes part of the job name)");
+LibraryWedge readWedge(const Field& w, const std::string& file_label) {
+  w.expectMap();
   LibraryWedge wedge;
-  const Node name = w.at("name");
+  w.has("set");  // known before 'name' is required, so it is not taken for a misspelling
+  const Field name = w.require("name", "a wedge needs a 'name' (it becomes part of the job name)");
   wedge.name = name.string();
   if (!isAssetName(wedge.name))
     name.fail("'" + wedge.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes part of the asset folder's name");
   if (!w.has("set") || w.at("set").yaml().IsNull()) return wedge;  // a wedge without overrides: the preset as is
-  const Node set = w.at("set");
-  for (const Node& key : set.keys({})) {
+  const Field set = w.at("set");
+  for (const Field& key : set.dataKeys()) {
     const std::string path = key.yaml().Scalar();
     std::stringstream parts(path);
     bool bad_path = path.empty() || path.back() == '.' || std::any_of(path.begin(), path.end(), [](char c) {
@@ -162,21 +95,21 @@ std::string stemName(const std::filesystem::path& preset) {
   return name;
 }
 
-LibraryEntry readEntry(const Node& e, const std::filesystem::path& base_dir, const std::string& file_label) {
+LibraryEntry readEntry(const Field& e, const std::filesystem::path& base_dir, const std::string& file_label) {
   if (!e.yaml().IsMap())
     e.fail("expected a library entry (a map with 'preset', and optionally 'name', 'seeds', 'wedges'), found " +
            describe(e.yaml()));
-  e.keys({"preset", "name", "seeds", "wedges"});
-  if (!e.has("preset")) e.fail("an entry needs 'preset' (a preset file, relative to the library file)");
+  e.expectMap();
   LibraryEntry entry;
-  const Node preset = e.at("preset");
+  for (const char* key : {"name", "seeds", "wedges"}) e.has(key);  // known before 'preset' is required
+  const Field preset = e.require("preset", "an entry needs 'preset' (a preset file, relative to the library file)");
   entry.preset = preset.string();
   entry.preset_file = base_dir / entry.preset;
   if (entry.preset.empty() || !std::filesystem::is_regular_file(entry.preset_file))
     preset.fail("no preset file at " + entry.preset_file.string(), "preset paths are relative to the library file");
 
   if (e.has("name")) {
-    const Node name = e.at("name");
+    const Field name = e.at("name");
     entry.name = name.string();
     if (!isAssetName(entry.name))
       name.fail("'" + entry.name + "' may only use a-z, 0-9, '_' and '-'", "it becomes the asset folders' names");
@@ -188,7 +121,7 @@ LibraryEntry readEntry(const Node& e, const std::filesystem::path& base_dir, con
   if (e.has("seeds")) entry.seeds = readSeeds(e.at("seeds"));
 
   if (e.has("wedges")) {
-    const Node wedges = e.at("wedges");
+    const Field wedges = e.at("wedges");
     if (wedges.size() == 0) wedges.fail("the list of wedges is empty", "leave 'wedges' out to bake the preset as is");
     for (std::size_t i = 0; i < wedges.size(); ++i) {
       LibraryWedge wedge = readWedge(wedges.item(i), file_label);
@@ -226,7 +159,11 @@ Library parseLibrary(const std::string& yaml_text, const std::filesystem::path& 
                      "remove the '---' and what follows");
   }
   const YAML::Node root_yaml = documents.empty() ? YAML::Node() : documents.front();
-  const Node root(root_yaml, "", label, YAML::Mark());
+  Source source;
+  source.origins.push_back({"", label, std::filesystem::absolute(file).parent_path()});
+  ReadLog reads;
+  source.reads = &reads;
+  const Field root(root_yaml, "", source);
   if (!root_yaml.IsSequence() || root_yaml.size() == 0)
     throw InputError({label, 1, 1}, "", "a library must be a non-empty YAML list of entries",
                      "for example:\n- preset: rock.yaml\n  seeds: [1, 2]");
@@ -236,6 +173,7 @@ Library parseLibrary(const std::string& yaml_text, const std::filesystem::path& 
   library.sha256 = sha256Hex(yaml_text);
   const std::filesystem::path base_dir = file.parent_path();
   for (std::size_t i = 0; i < root.size(); ++i) library.entries.push_back(readEntry(root.item(i), base_dir, label));
+  if (const std::vector<InputError> unknown = unreadKeyProblems(source); !unknown.empty()) throw unknown.front();
 
   // Two jobs with one name would bake into one folder: refuse before anything runs.
   std::vector<std::pair<std::string, std::size_t>> names;  // job name, entry

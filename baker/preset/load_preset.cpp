@@ -18,240 +18,11 @@
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
+#include "preset/yaml_field.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {
 namespace {
-
-// ---- where values came from ----
-
-// The file that wrote the values under a key path. With `extends`, a merged
-// preset mixes files: yaml-cpp marks carry line and column but not the file.
-struct Origin {
-  std::string key_path;          // "" = the whole document
-  std::string file;              // as named in messages
-  std::filesystem::path folder;  // absolute; relative paths in these values resolve against it
-};
-
-bool underKeyPath(const std::string& path, const std::string& prefix) {
-  return prefix.empty() || path == prefix || path.rfind(prefix + ".", 0) == 0;
-}
-
-// The origin with the longest key path that `path` lies under. origins.front() is the document's.
-const Origin& originOf(const std::vector<Origin>& origins, const std::string& path) {
-  const Origin* best = &origins.front();
-  for (const auto& origin : origins)
-    if (underKeyPath(path, origin.key_path) && origin.key_path.size() > best->key_path.size()) best = &origin;
-  return *best;
-}
-
-struct Source {
-  std::vector<Origin> origins;  // front(): the preset itself, key path ""
-  // Key paths replaced on the command line, with what to name as their location
-  // ("--set a.b=1", "--seed 7", or a library's "lib.yaml:12:9 (wedge 'tall')").
-  std::vector<std::pair<std::string, std::string>> overrides;
-  // Linting: problems are recorded here and validation goes on; null: the first one throws.
-  std::vector<InputError>* problems = nullptr;
-  // Where every key read was written (Preset::locations), when set.
-  std::map<std::string, SourceLocation>* locations = nullptr;
-
-  const std::string& file() const { return origins.front().file; }
-  const std::filesystem::path& folder() const { return origins.front().folder; }
-};
-
-std::string formatNumber(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
-// A node of the preset with its key path: typed, checked reads.
-class Field {
- public:
-  Field(YAML::Node node, std::string path, const Source& source, YAML::Mark parent_mark = YAML::Mark::null_mark())
-      : node_(std::move(node)), path_(std::move(path)), source_(&source), parent_mark_(parent_mark) {}
-
-  const std::string& path() const { return path_; }
-  bool defined() const { return node_.IsDefined() && !node_.IsNull(); }
-  bool isMap() const { return node_.IsMap(); }
-  bool isSequence() const { return node_.IsSequence(); }
-
-  [[noreturn]] void fail(const std::string& problem, const std::string& hint = {}) const {
-    throw InputError(location(), path_, problem, hint);
-  }
-
-  // The folder a relative path in this value resolves against: that of the file that wrote it (a base
-  // preset's own folder), or the preset's for a value given on the command line.
-  std::filesystem::path folder() const {
-    return overriddenBy() ? source_->folder() : originOf(source_->origins, path_).folder;
-  }
-  std::string relativePathHint() const {
-    if (overriddenBy()) return "paths given on the command line are relative to the preset's folder";
-    const Origin& origin = originOf(source_->origins, path_);
-    if (&origin == &source_->origins.front()) return "paths are relative to the preset's folder";
-    return "paths are relative to the folder of " + origin.file + ", the file that gives them";
-  }
-
-  Field at(const std::string& key) const {
-    Field field(node_.IsMap() ? node_[key] : YAML::Node(), join(key), *source_, markOrParent());
-    if (source_->locations && field.defined()) source_->locations->emplace(field.path(), field.location());
-    return field;
-  }
-  bool has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined() && !node_[key].IsNull(); }
-  // The value of a key that must be given. A key written with no value is reported at the key (an
-  // empty value's own position is the start of the next line).
-  Field require(const std::string& key, const std::string& problem, const std::string& hint = {}) const {
-    if (has(key)) return at(key);
-    if (node_.IsMap())
-      for (const auto& entry : node_)
-        if (entry.first.IsScalar() && entry.first.Scalar() == key)
-          Field(entry.first, join(key), *source_, markOrParent()).fail(problem, hint);
-    fail(problem, hint);
-  }
-
-  // Requires a map whose keys are all in `allowed`.
-  void expectMap(const std::vector<std::string>& allowed) const {
-    if (!node_.IsMap()) fail("expected a map (key: value, ...), found " + describe(node_));
-    std::vector<std::pair<std::string, YAML::Mark>> seen;
-    for (const auto& entry : node_) {
-      if (!entry.first.IsScalar())
-        Field(entry.first, path_, *source_, markOrParent()).fail("expected a key name, found " + describe(entry.first));
-      const std::string key = entry.first.Scalar();
-      // yaml-cpp keeps both entries of a repeated key and lookups find the first: an edit further down
-      // the file would be silently ignored.
-      const auto first = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == key; });
-      if (first != seen.end())
-        Field(entry.first, join(key), *source_, markOrParent())
-            .fail("'" + key + "' is given twice (first on line " + std::to_string(first->second.line + 1) + ")",
-                  "keep one of them");
-      seen.emplace_back(key, entry.first.Mark());
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      Field bad(entry.first, join(key), *source_, markOrParent());
-      const std::optional<std::string> best = closestName(key, allowed);
-      const std::string problem =
-          best ? "unknown key '" + key + "'; did you mean '" + *best + "'?" : "unknown key '" + key + "'";
-      // An unknown key does not change how the others read: linting lists every one.
-      InputError error(bad.location(), bad.path(), problem, "valid keys here: " + joinNames(allowed));
-      if (!source_->problems) throw error;
-      source_->problems->push_back(std::move(error));
-    }
-  }
-
-  // Exactly one of `kinds` must be present; returns it. Others may be allowed beside it.
-  std::string oneOf(const std::vector<std::string>& kinds, const std::vector<std::string>& also_allowed = {}) const {
-    std::vector<std::string> allowed = kinds;
-    allowed.insert(allowed.end(), also_allowed.begin(), also_allowed.end());
-    expectMap(allowed);
-    std::vector<std::string> present;
-    for (const auto& k : kinds)
-      if (node_[k].IsDefined()) present.push_back(k);
-    if (present.size() != 1)
-      fail(present.empty() ? "needs one of: " + joinNames(kinds)
-                           : "has " + joinNames(present) + "; give exactly one of: " + joinNames(kinds));
-    return present.front();
-  }
-
-  std::size_t size() const {
-    if (!node_.IsSequence()) fail("expected a list, found " + describe(node_));
-    return node_.size();
-  }
-  Field item(std::size_t i) const { return Field(node_[i], path_ + "." + std::to_string(i), *source_, markOrParent()); }
-
-  double number() const {
-    if (!node_.IsScalar()) fail("expected a number, found " + describe(node_));
-    try {
-      const double v = node_.as<double>();
-      if (!std::isfinite(v)) fail("expected a finite number, found " + describe(node_));
-      return v;
-    } catch (const YAML::Exception&) {
-      fail("expected a number, found " + describe(node_));
-    }
-  }
-  double numberIn(double lo, double hi, bool lo_open = false, bool hi_open = false) const {
-    const double v = number();
-    if ((lo_open ? v <= lo : v < lo) || (hi_open ? v >= hi : v > hi))
-      fail("must be in " + std::string(lo_open ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
-           (hi_open ? ")" : "]") + ", found " + formatNumber(v));
-    return v;
-  }
-  double positive() const {
-    const double v = number();
-    if (v <= 0) fail("must be greater than 0, found " + formatNumber(v));
-    return v;
-  }
-  long long integer(long long lo, long long hi) const {
-    if (!node_.IsScalar()) fail("expected a whole number, found " + describe(node_));
-    long long v = 0;
-    try {
-      v = node_.as<long long>();
-    } catch (const YAML::Exception&) {
-      fail("expected a whole number, found " + describe(node_));
-    }
-    if (v < lo || v > hi)
-      fail("must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", found " +
-           std::to_string(v));
-    return v;
-  }
-  std::uint64_t unsigned64() const {
-    if (const auto value = unsignedValue(node_)) return *value;
-    fail("expected a whole number >= 0, found " + describe(node_));
-  }
-  bool boolean() const {
-    if (!node_.IsScalar()) fail("expected true or false, found " + describe(node_));
-    try {
-      return node_.as<bool>();
-    } catch (const YAML::Exception&) {
-      fail("expected true or false, found " + describe(node_));
-    }
-  }
-  std::string string() const {
-    if (!node_.IsScalar()) fail("expected text, found " + describe(node_));
-    return node_.Scalar();
-  }
-  std::string choice(const std::vector<std::string>& options) const {
-    const std::string v = string();
-    if (std::find(options.begin(), options.end(), v) == options.end())
-      fail("'" + v + "' is not one of: " + joinNames(options));
-    return v;
-  }
-  Vec3d positiveVec3() const {
-    if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).positive(), item(1).positive(), item(2).positive()};
-  }
-  Vec3d vec3() const {
-    if (size() != 3) fail("expected a list of 3 numbers, found " + std::to_string(size()));
-    return {item(0).number(), item(1).number(), item(2).number()};
-  }
-
- private:
-  std::string join(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  YAML::Mark markOrParent() const {
-    return (node_.IsDefined() && !node_.Mark().is_null()) ? node_.Mark() : parent_mark_;
-  }
-  // A value that came from --set is located there, not in the file; so is a key the flag created on
-  // its way ("colluvum" in --set colluvum.yield=0.3), which has no position. The last flag wins.
-  const std::string* overriddenBy() const {
-    const bool from_file = node_.IsDefined() && !node_.Mark().is_null();
-    for (auto it = source_->overrides.rbegin(); it != source_->overrides.rend(); ++it) {
-      const auto& [path, argument] = *it;
-      if (underKeyPath(path_, path)) return &argument;
-      if (!from_file && !path_.empty() && path.rfind(path_ + ".", 0) == 0) return &argument;
-    }
-    return nullptr;
-  }
-  SourceLocation location() const {
-    if (const std::string* argument = overriddenBy()) return {*argument, 0, 0};
-    const std::string& file = originOf(source_->origins, path_).file;
-    const YAML::Mark mark = markOrParent();
-    if (mark.is_null()) return {file, 0, 0};
-    return {file, mark.line + 1, mark.column + 1};
-  }
-
-  YAML::Node node_;
-  std::string path_;
-  const Source* source_;
-  YAML::Mark parent_mark_;
-};
 
 // ---- --set ----
 
@@ -339,15 +110,15 @@ BubbleSpec readBubble(const Field& f) {
   const std::string kind = f.oneOf({"sphere", "ellipsoid", "box", "collection"});
   const Field k = f.at(kind);
   if (kind == "sphere") {
-    k.expectMap({"radius"});
+    k.expectMap();
     bubble.kind = BubbleSpec::Kind::Sphere;
     bubble.extents = {k.at("radius").positive(), 0, 0};
   } else if (kind == "ellipsoid") {
-    k.expectMap({"radii"});
+    k.expectMap();
     bubble.kind = BubbleSpec::Kind::Ellipsoid;
     bubble.extents = k.at("radii").positiveVec3();
   } else if (kind == "box") {
-    k.expectMap({"half_extents"});
+    k.expectMap();
     bubble.kind = BubbleSpec::Kind::Box;
     bubble.extents = k.at("half_extents").positiveVec3();
   } else {
@@ -355,7 +126,7 @@ BubbleSpec readBubble(const Field& f) {
     if (k.size() == 0) k.fail("a collection needs at least one member");
     for (std::size_t i = 0; i < k.size(); ++i) {
       const Field m = k.item(i);
-      m.expectMap({"bubble", "weight"});
+      m.expectMap();
       if (!m.has("bubble")) m.fail("a collection member needs a bubble");
       bubble.members.push_back({readBubble(m.at("bubble")), m.has("weight") ? m.at("weight").positive() : 1.0});
     }
@@ -410,9 +181,9 @@ std::vector<std::array<double, 2>> readPoints(const Field& f) {
   return points;
 }
 
-// Reads points and noise; `keys` are every key allowed in the map.
-DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) {
-  f.expectMap(keys);
+// Reads points and noise of a graph's map (the durability section or a keyframe).
+DurabilityGraph readGraph(const Field& f) {
+  f.expectMap();
   DurabilityGraph graph;
   if (f.has("points")) graph.points = readPoints(f.at("points"));
   if (f.has("noise")) {
@@ -428,7 +199,7 @@ DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) 
         graph.noise.push_back(std::nullopt);
         continue;
       }
-      s.expectMap({"amplitude", "period", "octaves"});
+      s.expectMap();
       NoiseParams noise;
       if (s.has("amplitude")) noise.amplitude = s.at("amplitude").numberIn(0.0, 1e6);
       if (s.has("period")) noise.period = s.at("period").positive();
@@ -441,7 +212,7 @@ DurabilityGraph readGraph(const Field& f, const std::vector<std::string>& keys) 
 
 // shape.variation (SPEC §2.8).
 ShapeVariation readVariation(const Field& f) {
-  f.expectMap({"amplitude", "period", "octaves"});
+  f.expectMap();
   ShapeVariation v;
   v.amplitude =
       f.require("amplitude", "a variation needs 'amplitude' (world units; 0 keeps the shape)").numberIn(0.0, 1e6);
@@ -452,13 +223,13 @@ ShapeVariation readVariation(const Field& f) {
 
 // durability.strata, joints and rind (SPEC §2.4).
 StrataParams readStrata(const Field& f) {
-  f.expectMap({"dip", "strike", "warp"});
+  f.expectMap();
   StrataParams s;
   if (f.has("dip")) s.dip = f.at("dip").numberIn(0.0, 90.0);
   if (f.has("strike")) s.strike = f.at("strike").numberIn(-360.0, 360.0);
   if (f.has("warp")) {
     const Field w = f.at("warp");
-    w.expectMap({"amplitude", "period"});
+    w.expectMap();
     s.warp_amplitude = w.require("amplitude", "a warp needs 'amplitude' (world units)").numberIn(0.0, 1e6);
     s.warp_period = w.require("period", "a warp needs 'period' (world units)").positive();
   }
@@ -466,7 +237,7 @@ StrataParams readStrata(const Field& f) {
 }
 
 JointSet readJointSet(const Field& f) {
-  f.expectMap({"strike", "dip", "spacing", "jitter", "width", "factor"});
+  f.expectMap();
   JointSet j;
   if (f.has("strike")) j.strike = f.at("strike").numberIn(-360.0, 360.0);
   if (f.has("dip")) j.dip = f.at("dip").numberIn(0.0, 90.0);
@@ -486,7 +257,7 @@ JointSet readJointSet(const Field& f) {
 }
 
 RindParams readRind(const Field& f) {
-  f.expectMap({"depth", "factor"});
+  f.expectMap();
   RindParams r;
   r.depth = f.require("depth", "a rind needs 'depth' (world units below the initial surface)").positive();
   r.factor = f.require("factor", "a rind needs 'factor' (how many times as durable, > 0)").positive();
@@ -494,27 +265,28 @@ RindParams readRind(const Field& f) {
 }
 
 void readShape(const Field& f, Preset& p) {
-  const std::string kind =
-      f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"}, {"center", "variation"});
+  f.has("center");  // asked first, so that they are known even when the kind is missing
+  f.has("variation");
+  const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"});
   const Field k = f.at(kind);
   if (kind == "box") {
-    k.expectMap({"size"});
+    k.expectMap();
     p.shape.kind = BoxShape{k.at("size").positiveVec3()};
   } else if (kind == "cylinder") {
-    k.expectMap({"radius", "height"});
+    k.expectMap();
     p.shape.kind = CylinderShape{k.at("radius").positive(), k.at("height").positive()};
   } else if (kind == "sphere") {
-    k.expectMap({"radius"});
+    k.expectMap();
     p.shape.kind = SphereShape{k.at("radius").positive()};
   } else if (kind == "inside_corner") {
-    k.expectMap({"size", "wall"});
+    k.expectMap();
     InsideCornerShape corner{k.at("size").positiveVec3(), k.at("wall").positive()};
     if (corner.wall >= std::min(corner.size[0], corner.size[1]))
       k.at("wall").fail("must be thinner than the corner's footprint (" + formatNumber(corner.size[0]) + " × " +
                         formatNumber(corner.size[1]) + ")");
     p.shape.kind = corner;
   } else if (kind == "image") {
-    k.expectMap({"path", "mode", "height"});
+    k.expectMap();
     ImageShape image;
     const std::filesystem::path given = k.at("path").string();
     image.path =
@@ -527,7 +299,7 @@ void readShape(const Field& f, Preset& p) {
     image.height = k.at("height").positive();
     p.shape.kind = image;
   } else {
-    k.expectMap({"path", "scale"});
+    k.expectMap();
     MeshShape mesh;
     const std::filesystem::path given = k.at("path").string();
     mesh.path =
@@ -545,22 +317,23 @@ void readShape(const Field& f, Preset& p) {
 // records it and goes on with the next part, so one run lists every problem.
 template <typename Read>
 void validatePart(const Source& source, Read&& read) {
-  if (!source.problems) return read();
   try {
     read();
   } catch (const InputError& e) {
+    source.reads->failed.push_back(e.keyPath());
     source.problems->push_back(e);
   }
 }
 
-Preset validate(const YAML::Node& root_node, const Source& source, const std::filesystem::path& file) {
+// Reads every part of the schema; each problem goes to source.problems (unknown keys first,
+// in reading order, then the others in reading order), and reading goes on.
+Preset validate(const YAML::Node& root_node, Source& source, const std::filesystem::path& file) {
+  ReadLog reads;
+  source.reads = &reads;
   const Field root(root_node, "", source);
   Preset p;
   p.file = file;
-  validatePart(source, [&] {
-    root.expectMap({"rockbake", "name", "seed", "extends", "grid", "shape", "durability", "bubbles", "response",
-                    "rockfall", "colluvium", "time", "cycles", "until", "mesh", "bake", "export", "render"});
-  });
+  validatePart(source, [&] { root.expectMap(); });
   validatePart(source, [&] {
     const Field version = root.require("rockbake", "missing 'rockbake: 1' (the schema version)");
     const long long schema =
@@ -588,7 +361,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("grid")) return;
     const Field g = root.at("grid");
-    g.expectMap({"size", "resolution", "ground"});
+    g.expectMap();
     if (g.has("size")) p.grid.size = g.at("size").positiveVec3();
     if (g.has("resolution"))
       p.grid.resolution = int(g.at("resolution").integer(GridParams::kMinResolution, GridParams::kMaxResolution));
@@ -603,7 +376,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("durability")) return;
     const Field d = root.at("durability");
-    p.durability.graph = readGraph(d, {"points", "noise", "keyframes", "strata", "joints", "rind"});
+    p.durability.graph = readGraph(d);
     if (d.has("strata")) p.durability.strata = readStrata(d.at("strata"));
     if (d.has("joints")) {
       const Field js = d.at("joints");
@@ -615,7 +388,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
       for (std::size_t i = 0; i < ks.size(); ++i) {
         const Field k = ks.item(i);
         DurabilityKeyframe keyframe;
-        keyframe.graph = readGraph(k, {"at", "points", "noise"});
+        keyframe.graph = readGraph(k);
         if (!k.has("at")) k.fail("a keyframe needs 'at' (the simulation time it takes effect)");
         if (!k.has("points")) k.fail("a keyframe needs 'points' (the graph it switches to)");
         keyframe.at = k.at("at").numberIn(0.0, 1e9);
@@ -632,7 +405,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (bands.size() == 0) bands.fail("needs at least one band");
     for (std::size_t i = 0; i < bands.size(); ++i) {
       const Field b = bands.item(i);
-      b.expectMap({"up_to", "bubble", "spheroidal", "cavernous"});
+      b.expectMap();
       BubbleBand band;
       if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
       band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
@@ -686,7 +459,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("rockfall")) return;
     const Field r = root.at("rockfall");
-    r.expectMap({"mode"});
+    r.expectMap();
     if (r.has("mode")) {
       const std::string mode = r.at("mode").choice({"drop", "crumble", "off"});
       p.rockfall.mode = mode == "drop"      ? RockfallMode::Drop
@@ -697,7 +470,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("colluvium")) return;
     const Field c = root.at("colluvium");
-    c.expectMap({"yield", "talus_angle", "removal"});
+    c.expectMap();
     if (c.has("yield")) p.colluvium.yield = c.at("yield").numberIn(0.0, 1.0);
     if (c.has("talus_angle")) p.colluvium.talus_angle = c.at("talus_angle").numberIn(0.0, 90.0, true, true);
     if (c.has("removal")) p.colluvium.removal = c.at("removal").numberIn(0.0, 1.0);
@@ -713,7 +486,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("until")) return;
     const Field u = root.at("until");
-    u.expectMap({"rock_volume_fraction"});
+    u.expectMap();
     if (u.has("rock_volume_fraction"))
       p.stop.rock_volume_fraction = u.at("rock_volume_fraction").numberIn(0.0, 1.0, true, true);
   });
@@ -721,7 +494,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("mesh")) return;
     const Field m = root.at("mesh");
-    m.expectMap({"smoothing", "subdivision", "lods"});
+    m.expectMap();
     if (m.has("smoothing")) p.mesh.smoothing = m.at("smoothing").numberIn(0.0, 4.0);
     if (m.has("subdivision")) p.mesh.subdivision = int(m.at("subdivision").integer(0, 3));
     if (m.has("lods")) {
@@ -736,7 +509,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("bake")) return;
     const Field b = root.at("bake");
-    b.expectMap({"palette", "layers", "colluvium_color"});
+    b.expectMap();
     if (b.has("palette")) {
       const std::string palette = b.at("palette").choice({"natural", "debug", "curvature"});
       p.bake.palette = palette == "natural" ? Palette::Natural
@@ -747,7 +520,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
       const Field layers = b.at("layers");
       for (std::size_t i = 0; i < layers.size(); ++i) {
         const Field l = layers.item(i);
-        l.expectMap({"durability", "color"});
+        l.expectMap();
         if (!l.has("durability") || !l.has("color")) l.fail("a layer needs durability and color");
         const PaletteLayer layer{l.at("durability").positive(), readColor(l.at("color"))};
         if (!p.bake.layers.empty() && layer.durability <= p.bake.layers.back().durability)
@@ -771,7 +544,7 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
   validatePart(source, [&] {
     if (!root.has("render")) return;
     const Field r = root.at("render");
-    r.expectMap({"template", "width", "height", "quality", "antialias", "turntable"});
+    r.expectMap();
     if (r.has("template")) p.render.template_name = r.at("template").string();
     if (r.has("width")) p.render.width = int(r.at("width").integer(16, 8192));
     if (r.has("height")) p.render.height = int(r.at("height").integer(16, 8192));
@@ -779,11 +552,15 @@ Preset validate(const YAML::Node& root_node, const Source& source, const std::fi
     if (r.has("antialias")) p.render.antialias = r.at("antialias").numberIn(0.0, 3.0);
     if (r.has("turntable")) {
       const Field t = r.at("turntable");
-      t.expectMap({"frames"});
+      t.expectMap();
       if (t.has("frames")) p.render.turntable_frames = int(t.at("frames").integer(0, 360));
     }
   });
 
+  // A key no read asked for is unknown; it often explains a problem reported beside it.
+  std::vector<InputError> unknown = unreadKeyProblems(source);
+  source.problems->insert(source.problems->begin(), unknown.begin(), unknown.end());
+  source.reads = nullptr;
   return p;
 }
 
@@ -995,8 +772,11 @@ std::string readPresetFile(const std::filesystem::path& file) {
 Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& file, const PresetOverrides& overrides) {
   PresetTree tree = readPresetTree(yaml_text, file, overrides);
   std::map<std::string, SourceLocation> locations;
+  std::vector<InputError> problems;
   tree.source.locations = &locations;
+  tree.source.problems = &problems;
   Preset preset = validate(tree.root, tree.source, std::filesystem::absolute(file));
+  if (!problems.empty()) throw problems.front();
   preset.sources = std::move(tree.files);
   preset.locations = std::move(locations);
   return preset;
