@@ -46,7 +46,7 @@ std::vector<float> signedDistance(const std::vector<std::uint8_t>& inside, const
   const int band = int(std::ceil(reach / g.h)) + 1;
   openvdb::tools::dilateActiveValues(fog->tree(), band, openvdb::tools::NN_FACE_EDGE_VERTEX,
                                      openvdb::tools::IGNORE_TILES);
-  openvdb::tools::foreach(fog->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
+  openvdb::tools::foreach (fog->beginValueOn(), [&](const openvdb::FloatGrid::ValueOnIter& it) {
     const openvdb::Coord c = it.getCoord();
     it.setValue(occupied(c.x(), c.y(), c.z()));
   });

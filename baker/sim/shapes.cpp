@@ -103,8 +103,7 @@ TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
 // SPEC §2.8 variation: the boundary moved along its normal by seeded noise, up
 // to `amplitude` out (noise > 0) or in: rock where the signed distance to the
 // shape is below the displacement.
-void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v,
-                  std::uint64_t seed) {
+void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v, std::uint64_t seed) {
   const std::vector<float> distance = signedDistance(inside, g, v.amplitude + 2 * g.h);
   const PerlinNoise noise(counterHash(seed, purposeId("shape-variation"), 0, 0));
   // Off the lattice, where Perlin noise is 0 for every seed.
@@ -117,9 +116,8 @@ void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const 
         const std::size_t i = g.index(x, y, z);
         if (std::abs(distance[i]) > v.amplitude + g.h) continue;  // beyond the noise's reach
         const Vec3d p = g.center(x, y, z);
-        const double n =
-            noise.fractal(p[0] / v.period + offset[0], p[1] / v.period + offset[1], p[2] / v.period + offset[2],
-                          v.octaves);
+        const double n = noise.fractal(p[0] / v.period + offset[0], p[1] / v.period + offset[1],
+                                       p[2] / v.period + offset[2], v.octaves);
         inside[i] = double(distance[i]) < v.amplitude * n ? 1 : 0;
       }
   });
