@@ -139,6 +139,8 @@ void writeCheckpoint(const fs::path& file, const Checkpoint& c) {
   putArray(out, rock.material);
   putSpans(out, rock.integrity);
   putSpans(out, rock.durability);
+  put(out, std::uint64_t(rock.rind.size()));  // 0 without a rind, else one byte per cell
+  putArray(out, rock.rind);
   put(out, std::uint64_t(c.snapshot.colluvium_columns.size()));
   putArray(out, c.snapshot.colluvium_columns);
   out += sha256Hex(out);
@@ -194,6 +196,9 @@ Checkpoint readCheckpoint(const fs::path& file) {
     c.snapshot.rock.material = reader.getArray<Material>(cells);
     c.snapshot.rock.integrity = reader.getSpans(g);
     c.snapshot.rock.durability = reader.getSpans(g);
+    const auto rind_cells = reader.get<std::uint64_t>();
+    if (rind_cells != 0 && rind_cells != cells) reader.truncated();
+    c.snapshot.rock.rind = reader.getArray<std::uint8_t>(rind_cells);
     c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(reader.get<std::uint64_t>());
     if (reader.at() != bytes.size() - kDigest) reader.truncated();
     for (Material m : c.snapshot.rock.material)

@@ -270,8 +270,63 @@ ResponseParams readResponse(const Field& r) {
   return response;
 }
 
+// shape.variation (SPEC §2.8).
+ShapeVariation readVariation(const Field& f) {
+  f.expectMap();
+  ShapeVariation v;
+  v.amplitude =
+      f.require("amplitude", "a variation needs 'amplitude' (world units; 0 keeps the shape)").numberIn(0.0, 1e6);
+  if (f.has("period")) v.period = f.at("period").positive();
+  if (f.has("octaves")) v.octaves = int(f.at("octaves").integer(1, 8));
+  return v;
+}
+
+// durability.strata, joints and rind (SPEC §2.4).
+StrataParams readStrata(const Field& f) {
+  f.expectMap();
+  StrataParams s;
+  if (f.has("dip")) s.dip = f.at("dip").numberIn(0.0, 90.0);
+  if (f.has("strike")) s.strike = f.at("strike").numberIn(-360.0, 360.0);
+  if (f.has("warp")) {
+    const Field w = f.at("warp");
+    w.expectMap();
+    s.warp_amplitude = w.require("amplitude", "a warp needs 'amplitude' (world units)").numberIn(0.0, 1e6);
+    s.warp_period = w.require("period", "a warp needs 'period' (world units)").positive();
+  }
+  return s;
+}
+
+JointSet readJointSet(const Field& f) {
+  f.expectMap();
+  JointSet j;
+  if (f.has("strike")) j.strike = f.at("strike").numberIn(-360.0, 360.0);
+  if (f.has("dip")) j.dip = f.at("dip").numberIn(0.0, 90.0);
+  j.spacing = f.require("spacing", "a joint set needs 'spacing' (world units between its planes)").positive();
+  if (f.has("jitter")) {
+    j.jitter = f.at("jitter").number();
+    if (j.jitter < 0 || j.jitter >= j.spacing)
+      f.at("jitter").fail("must be at least 0 and less than spacing (" + formatNumber(j.spacing) + "), found " +
+                          formatNumber(j.jitter));
+  }
+  j.width = f.require("width", "a joint set needs 'width' (world units either side of a plane)").positive();
+  if (j.width >= j.spacing)
+    f.at("width").fail("must be less than spacing (" + formatNumber(j.spacing) + "), found " + formatNumber(j.width),
+                       "a joint zone as wide as the spacing leaves no sound rock between the planes");
+  j.factor = f.require("factor", "a joint set needs 'factor' (the durability multiplier at a plane, > 0)").positive();
+  return j;
+}
+
+RindParams readRind(const Field& f) {
+  f.expectMap();
+  RindParams r;
+  r.depth = f.require("depth", "a rind needs 'depth' (world units below the initial surface)").positive();
+  r.factor = f.require("factor", "a rind needs 'factor' (how many times as durable, > 0)").positive();
+  return r;
+}
+
 void readShape(const Field& f, Preset& p) {
-  f.has("center");  // asked first, so that it is known even when the kind is missing
+  f.has("center");  // asked first, so that they are known even when the kind is missing
+  f.has("variation");
   const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"});
   const Field k = f.at(kind);
   if (kind == "box") {
@@ -315,6 +370,7 @@ void readShape(const Field& f, Preset& p) {
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
+  if (f.has("variation")) p.shape.variation = readVariation(f.at("variation"));
 }
 
 // Reads every part of the schema; each problem goes to source.problems (unknown keys first,
@@ -368,6 +424,12 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     if (!root.has("durability")) return;
     const Field d = root.at("durability");
     p.durability.graph = readGraph(d);
+    if (d.has("strata")) p.durability.strata = readStrata(d.at("strata"));
+    if (d.has("joints")) {
+      const Field js = d.at("joints");
+      for (std::size_t i = 0; i < js.size(); ++i) p.durability.joints.push_back(readJointSet(js.item(i)));
+    }
+    if (d.has("rind")) p.durability.rind = readRind(d.at("rind"));
     if (d.has("keyframes")) {
       const Field ks = d.at("keyframes");
       for (std::size_t i = 0; i < ks.size(); ++i) {

@@ -57,11 +57,21 @@ struct MeshShape {
 };
 using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape, MeshShape>;
 
+// Seeded noise on the shape's boundary, so each seed starts from a different
+// rock of the same kind: the surface moves along its normal by amplitude ×
+// fractal Perlin noise (at most `amplitude`, typically about a third of it).
+struct ShapeVariation {
+  double amplitude = 0.0;  // world units, >= 0; 0 = the shape as given
+  double period = 1.0;     // world units, > 0
+  int octaves = 1;         // 1..8
+};
+
 struct ShapeParams {
   ShapeKind kind = BoxShape{{2.0, 2.0, 2.0}};
   // Where the shape's centre (x, y) and base (z) go; default: centred in x, y,
   // resting on the ground.
   std::optional<Vec3d> center;
+  std::optional<ShapeVariation> variation;  // none: the shape exactly
 };
 
 // ---- durability graph (SPEC §2.4) ----
@@ -76,6 +86,28 @@ struct DurabilityGraph {
   // One entry per segment (points.size() - 1 entries) or empty for none.
   std::vector<std::optional<NoiseParams>> noise;
 };
+// Geology beyond the paper's altitude graph (SPEC §2.4). Planes strike
+// `strike` degrees clockwise from +y (seen from above) and dip `dip` degrees
+// (0..90) towards the strike's right.
+struct StrataParams {
+  double dip = 0.0;             // degrees, 0..90; 0 = the paper's flat beds
+  double strike = 0.0;          // degrees
+  double warp_amplitude = 0.0;  // world units the beds are folded along their normal, >= 0
+  double warp_period = 1.0;     // world units, > 0
+};
+struct JointSet {
+  double strike = 0.0;   // degrees
+  double dip = 90.0;     // degrees, 0..90
+  double spacing = 1.0;  // world units between neighbouring planes, > 0
+  double jitter = 0.0;   // world units: planes are spacing ± jitter apart, 0 <= jitter < spacing
+  double width = 0.05;   // world units: durability changes within `width` of a plane, 0 < width < spacing
+  double factor = 0.3;   // durability multiplier near a plane, > 0
+};
+struct RindParams {
+  double depth = 0.1;   // world units below the initial surface, > 0
+  double factor = 2.0;  // durability multiplier in the rind, > 0
+};
+
 
 // ---- bubbles (SPEC §2.3) ----
 struct BubbleSpec {
@@ -118,6 +150,10 @@ struct DurabilityKeyframe {
 struct DurabilityParams {
   DurabilityGraph graph;
   std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
+  // The rock's structure: it stays through keyframes (they replace the graph only).
+  std::optional<StrataParams> strata;  // none: the graph is read by altitude
+  std::vector<JointSet> joints;
+  std::optional<RindParams> rind;
 };
 
 // ---- rockfall and colluvium (SPEC §2.6, §2.7) ----

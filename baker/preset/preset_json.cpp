@@ -77,6 +77,9 @@ json shapeToJson(const ShapeParams& shape) {
   };
   json out = std::visit(Visitor{}, shape.kind);
   out["center"] = shape.center ? json(*shape.center) : json(nullptr);
+  // Only when given, so presets without it keep their fingerprint.
+  if (const auto& v = shape.variation)
+    out["variation"] = {{"amplitude", v->amplitude}, {"period", v->period}, {"octaves", v->octaves}};
   return out;
 }
 
@@ -124,6 +127,23 @@ json presetToJson(const Preset& p) {
     keyframes.push_back(kf);
   }
   durability["keyframes"] = keyframes;
+  // Geology only when given, so presets without it keep their fingerprint.
+  if (const auto& s = p.durability.strata)
+    durability["strata"] = {{"dip", s->dip},
+                            {"strike", s->strike},
+                            {"warp", {{"amplitude", s->warp_amplitude}, {"period", s->warp_period}}}};
+  if (!p.durability.joints.empty()) {
+    json joints = json::array();
+    for (const auto& j : p.durability.joints)
+      joints.push_back({{"strike", j.strike},
+                        {"dip", j.dip},
+                        {"spacing", j.spacing},
+                        {"jitter", j.jitter},
+                        {"width", j.width},
+                        {"factor", j.factor}});
+    durability["joints"] = joints;
+  }
+  if (const auto& r = p.durability.rind) durability["rind"] = {{"depth", r->depth}, {"factor", r->factor}};
   out["durability"] = durability;
   out["bubbles"] = bandsToJson(p.bubbles);
   out["response"] = responseToJson(p.response);

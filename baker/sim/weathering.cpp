@@ -180,6 +180,7 @@ struct WeatheringSimulation::State {
         colluvium_count(rock.count(Material::Colluvium)),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
+        geology(preset.durability, preset.grid.size, preset.seed),
         planned_cycles(plannedCycles(preset, rock.layout.h)),
         initial_rock(rock.count(Material::Rock)),
         rock_count(initial_rock) {
@@ -211,7 +212,8 @@ struct WeatheringSimulation::State {
     const double h = rock.layout.h;
     while (next_keyframe < keyframes.size() && keyframes[next_keyframe].at <= time + 1e-9 * h) {
       const DurabilityKeyframe& k = keyframes[next_keyframe];
-      if (k.graph && durability) assignDurability(rock, DurabilityField(*k.graph, preset.seed, next_keyframe + 1));
+      if (k.graph && durability)
+        assignDurability(rock, DurabilityField(*k.graph, preset.seed, next_keyframe + 1), geology);
       if (k.bubbles) useBubbles(*k.bubbles);
       if (k.response) response = *k.response;
       ++next_keyframe;
@@ -233,6 +235,7 @@ struct WeatheringSimulation::State {
   std::size_t colluvium_count;
   RockfallSolver rockfall;
   ColluviumModel colluvium_model;
+  Geology geology;  // the rock's structure, which every keyframe's graph is read through
   int planned_cycles;
   int cycle = 0;
   std::size_t initial_rock, rock_count;
@@ -250,7 +253,7 @@ WeatheringSimulation::WeatheringSimulation(SimulationSnapshot snapshot, SimParam
     return spans.nx == g.nx && spans.first.size() == rows && spans.values.size() == rows;
   };
   if (snapshot.cycle < 0 || snapshot.rock.material.size() != g.cellCount() || !fits(snapshot.rock.integrity) ||
-      !fits(snapshot.rock.durability))
+      !fits(snapshot.rock.durability) || (!snapshot.rock.rind.empty() && snapshot.rock.rind.size() != g.cellCount()))
     throw std::invalid_argument("simulation snapshot: its grids do not match its layout");
   const int cycle = snapshot.cycle;
   state_ = std::make_unique<State>(std::move(snapshot.rock), std::move(params));
