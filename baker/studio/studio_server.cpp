@@ -29,7 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-constexpr std::size_t kMaxBody = 1 << 20;  // 1 MB
+constexpr std::size_t kMaxBody = 1 << 20;  // 1 MB: the largest request the API accepts
+// Bodies up to this size are read to the end and then refused with 413 and a
+// message: a server that closes the connection mid-upload leaves the client
+// with a reset instead of the answer. Larger ones are cut off unanswered.
+constexpr std::size_t kMaxReadBody = 16 << 20;
 
 void reply(httplib::Response& res, int status, const json& body) {
   res.status = status;
@@ -41,6 +45,7 @@ void fail(httplib::Response& res, int status, const std::string& message) {
 }
 
 json parseBody(const httplib::Request& req) {
+  if (req.body.size() > kMaxBody) throw StudioError(413, "the request body is over 1 MB");
   try {
     return json::parse(req.body);
   } catch (const json::exception& e) {
@@ -180,7 +185,7 @@ int runStudio(const StudioOptions& options) {
   };
 
   httplib::Server server;
-  server.set_payload_max_length(kMaxBody);
+  server.set_payload_max_length(kMaxReadBody);
   server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
     std::string message = "HTTP " + std::to_string(res.status);

@@ -106,6 +106,7 @@ export function rawPost(url, rawPath, body) {
     });
     socket.write(`POST ${rawPath} HTTP/1.1\r\nHost: ${u.host}\r\nContent-Type: application/json\r\n` +
                  `Content-Length: ${Buffer.byteLength(body)}\r\nConnection: close\r\n\r\n`);
-    socket.end(body);
+    // Not end(): a half-closed socket reads to the server as a client that left, and it would not answer.
+    socket.write(body);
   });
 }
