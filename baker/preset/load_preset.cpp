@@ -18,8 +18,8 @@
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
-#include "preset/yaml_field.h"
 #include "preset/render_templates.h"
+#include "preset/yaml_field.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {
@@ -351,7 +351,8 @@ void readShape(const Field& f, Preset& p) {
     const std::filesystem::path given = k.at("path").string();
     image.path =
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
-    if (!std::filesystem::is_regular_file(image.path))
+    std::error_code unreadable;  // e.g. a name too long for the file system: no file, not a crash
+    if (!std::filesystem::is_regular_file(image.path, unreadable))
       k.at("path").fail("no image file at " + image.path.string(), k.at("path").relativePathHint());
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
@@ -364,7 +365,8 @@ void readShape(const Field& f, Preset& p) {
     const std::filesystem::path given = k.at("path").string();
     mesh.path =
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
-    if (!std::filesystem::is_regular_file(mesh.path))
+    std::error_code unreadable;
+    if (!std::filesystem::is_regular_file(mesh.path, unreadable))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
     if (k.has("scale")) mesh.scale = k.at("scale").numberIn(0.0, kMaxWorldLength, true);
     p.shape.kind = mesh;
