@@ -14,6 +14,8 @@ packages=(
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
   # ASan/UBSan runtimes; llvm-14 brings llvm-symbolizer for readable reports.
   clang-14 libclang-rt-14-dev llvm-14
+  # The studio: its HTTP server, and a real browser for its page's tests.
+  libcpp-httplib-dev chromium
   # A real single-node Slurm cluster for tests/slurm, which starts its own daemons on free
   # ports with every file in /tmp. The packages' slurmctld and slurmd services never start
   # (their init scripts need /etc/slurm/slurm.conf, which nothing writes); a system munged,
@@ -50,4 +52,13 @@ validator_dir="$(dirname "$0")/gltf-validator"
 if [ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]; then
   echo "setup: installing the glTF validator (npm)"
   (cd "$validator_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+
+# The studio page's JavaScript (three.js) and the browser test's driver
+# (puppeteer-core), pinned by studio/package-lock.json; rockbake serves
+# studio/node_modules/three itself, so the page needs no internet.
+studio_dir="$(dirname "$0")/../studio"
+if [ ! -f "$studio_dir/node_modules/three/package.json" ] || [ ! -f "$studio_dir/node_modules/puppeteer-core/package.json" ]; then
+  echo "setup: installing the studio's JavaScript packages (npm)"
+  (cd "$studio_dir" && npm ci --no-audit --no-fund --loglevel=error)
 fi

@@ -222,6 +222,10 @@ TEST(LibraryFile, ErrorsNameLineColumnAndKeyPath) {
       << wedge;
   EXPECT_NE(libraryError(dir, "- preset: missing.yaml\n").find("lib.yaml:1:11: 0.preset: no preset file"),
             std::string::npos);
+  // A name longer than the file system allows is no file either, not a crash.
+  EXPECT_NE(libraryError(dir, "- preset: " + std::string(300, 'r') + ".yaml\n")
+                .find("lib.yaml:1:11: 0.preset: no preset file"),
+            std::string::npos);
   EXPECT_NE(libraryError(dir, "- preset: small.yaml\n  seeds: {from: 1}\n").find("needs both 'from' and 'count'"),
             std::string::npos);
   EXPECT_NE(libraryError(dir, "- preset: small.yaml\n  seeds: [1, -2]\n").find("0.seeds.1: expected a whole number"),

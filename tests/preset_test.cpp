@@ -329,6 +329,9 @@ TEST(Preset, ErrorsPointAtTheOffendingNode) {
   const std::string resolved = (std::filesystem::absolute("dir/p.yaml").parent_path() / "missing.png").string();
   EXPECT_NE(missing.find("dir/p.yaml:3:23: shape.image.path: no image file at " + resolved), std::string::npos)
       << missing;
+  // A name too long for the file system: no such file, at the same place.
+  const std::string too_long = errorOf(head + "shape: {mesh: {path: " + std::string(300, 'm') + ".obj}}\ntime: 1\n");
+  EXPECT_NE(too_long.find("dir/p.yaml:3:22: shape.mesh.path: no mesh file at "), std::string::npos) << too_long;
   // Two shapes: at the shape map.
   const std::string two = errorOf(head + "shape: {box: {size: [1, 1, 1]}, sphere: {radius: 1}}\ntime: 1\n");
   EXPECT_NE(two.find("dir/p.yaml:3:8: shape: has box, sphere; give exactly one of"), std::string::npos) << two;

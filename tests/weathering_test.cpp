@@ -271,7 +271,7 @@ TEST(Weathering, KeyframeThatSoftensABandSpeedsUpItsRetreatAfterItsTime) {
   Preset edited = plain;
   DurabilityKeyframe keyframe;
   keyframe.at = 0.75;
-  keyframe.graph.points = {{0.0, 1.0}, {0.39, 1.0}, {0.4, 0.25}, {0.6, 0.25}, {0.61, 1.0}, {1.0, 1.0}};
+  keyframe.graph = DurabilityGraph{{{0.0, 1.0}, {0.39, 1.0}, {0.4, 0.25}, {0.6, 0.25}, {0.61, 1.0}, {1.0, 1.0}}, {}};
   edited.durability.keyframes = {keyframe};
 
   const VoxelRock start = buildInitialRock(resolveShape(plain), plain);

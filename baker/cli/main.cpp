@@ -24,6 +24,7 @@
 #include "cli/library_progress.h"
 #include "core/error.h"
 #include "pipeline/bake_asset.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/library_bake.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
@@ -35,6 +36,7 @@
 #include "preset/render_templates.h"
 #include "render/render_asset.h"
 #include "sim/grid_layout.h"
+#include "studio/studio_server.h"
 
 namespace {
 
@@ -77,6 +79,7 @@ struct BakeArgs {
   std::optional<int> resolution;
   bool no_mesh = false;
   bool no_render = false;
+  double checkpoint_every = 0.0;
 };
 
 // --resolution takes what grid.resolution takes.
@@ -119,6 +122,7 @@ int runBake(const BakeArgs& args) {
     options.load_seconds = load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
+    options.checkpoint_every = args.checkpoint_every;
     rockbake::BakeSummary summary;
     try {
       summary = rockbake::bakeAsset(presets[i], shapes[i], options);
@@ -130,6 +134,36 @@ int runBake(const BakeArgs& args) {
     spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
   }
+  return kExitOk;
+}
+
+struct ResumeArgs {
+  std::string checkpoint;
+  std::vector<std::string> sets;
+  std::string out_dir = "out";
+  int threads = 0;
+  bool no_mesh = false;
+  bool no_render = false;
+  double checkpoint_every = 0.0;
+};
+
+// Continues a checkpoint (with edits) into OUT/<name>/, as the bake it came from would have gone on.
+int runResume(const ResumeArgs& args) {
+  const auto thread_limit = limitThreads(args.threads);
+  const rockbake::Checkpoint checkpoint = rockbake::readCheckpoint(args.checkpoint);
+  const rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
+  rockbake::BakeOptions options;
+  options.out_dir = args.out_dir;
+  options.mesh = !args.no_mesh;
+  options.render = !args.no_render;
+  options.render_threads = args.threads;
+  options.manifest.overrides = plan.overrides;
+  options.checkpoint_every = args.checkpoint_every;
+  options.resume = &checkpoint;
+  const auto summary = rockbake::bakeAsset(plan.preset, rockbake::readInputs(plan.preset), options);
+  spdlog::info("{}: resumed at time {:.4g}, {} cycles in all, rock {} → {} voxels in {:.2f} s → {}", plan.preset.name,
+               checkpoint.snapshot.cycle * checkpoint.snapshot.rock.layout.h, summary.cycles, summary.initial_rock,
+               summary.final_rock, summary.seconds, summary.asset_dir.string());
   return kExitOk;
 }
 
@@ -308,6 +342,26 @@ int main(int argc, char** argv) {
       ->check(kResolutionRange);
   bake_cmd->add_flag("--no-mesh", bake.no_mesh, "Skip meshing (and so rendering)");
   bake_cmd->add_flag("--no-render", bake.no_render, "Skip rendering");
+  bake_cmd
+      ->add_option("--checkpoint-every", bake.checkpoint_every,
+                   "Save the simulation state every T units of time to OUT/<name>/checkpoints/<time>.rbk")
+      ->check(CLI::PositiveNumber);
+
+  ResumeArgs resume;
+  CLI::App* resume_cmd = app.add_subcommand("resume", "Continue a checkpoint, with edits, into OUT/<name>/");
+  resume_cmd->add_option("checkpoint", resume.checkpoint, "A .rbk file written by bake --checkpoint-every")
+      ->required()
+      ->check(CLI::ExistingFile);
+  resume_cmd->add_option("--set", resume.sets,
+                         "Edit: durability.points/noise, bubbles, response (keyframes at the checkpoint's time), "
+                         "colluvium, rockfall, time (repeatable)");
+  resume_cmd->add_option("-o,--out", resume.out_dir, "Output folder (default: out)");
+  resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  resume_cmd->add_flag("--no-mesh", resume.no_mesh, "Skip meshing (and so rendering)");
+  resume_cmd->add_flag("--no-render", resume.no_render, "Skip rendering");
+  resume_cmd->add_option("--checkpoint-every", resume.checkpoint_every, "Save checkpoints as bake does")
+      ->check(CLI::PositiveNumber);
 
   RenderArgs render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a baked asset again, without re-simulating");
@@ -333,6 +387,18 @@ int main(int argc, char** argv) {
   preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed")->check(kSeedValidator);
   preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
       ->check(kResolutionRange);
+
+  rockbake::StudioOptions studio;
+  std::string studio_preset, studio_out = "out";
+  CLI::App* studio_cmd = app.add_subcommand(
+      "studio", "Edit the durability graph while the rock weathers, in a local web page (docs/studio.md)");
+  studio_cmd->add_option("preset", studio_preset, "A preset YAML file")->required()->check(CLI::ExistingFile);
+  studio_cmd->add_option("--port", studio.port, "TCP port (default: 8631; 0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  studio_cmd->add_option("--host", studio.host, "Address to listen on (default: 127.0.0.1, this machine only)");
+  studio_cmd->add_option("--resolution", studio.resolution, "Preview resolution (default: 64)")
+      ->check(CLI::Range(8, 2048));
+  studio_cmd->add_option("-o,--out", studio_out, "Where bake final writes OUT/<name>/ (default: out)");
 
   LibraryArgs library;
   CLI::App* library_cmd = app.add_subcommand(
@@ -372,9 +438,16 @@ int main(int argc, char** argv) {
   try {
     if (*bake_cmd) return runBake(bake);
     if (*render_cmd) return runRender(render);
+    if (*resume_cmd) return runResume(resume);
     if (*lint_cmd) return runLint(lint);
     if (*preset_show_cmd) return runPresetShow(preset_show);
     if (*library_cmd) return runLibrary(library, verbose);
+    if (*studio_cmd) {
+      studio.preset = studio_preset;
+      studio.out_dir = studio_out;
+      studio.web_root = ROCKBAKE_STUDIO_DIR;
+      return rockbake::runStudio(studio);
+    }
   } catch (const rockbake::InputError& e) {
     spdlog::error("{}", e.what());
     return kExitBadInput;

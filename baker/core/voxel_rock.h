@@ -98,6 +98,10 @@ struct VoxelRock {
   std::vector<Material> material;  // cellCount()
   RowSpans integrity;              // 1 at the start, rock voxels only meaningful
   RowSpans durability;             // > 0 on rock voxels, 0 elsewhere
+  // Empty without a rind (durability.rind); else cellCount(): the part
+  // (0..255) of each voxel within the rind's depth of the initial surface.
+  // Falls with its rock; keyframes re-read it.
+  std::vector<std::uint8_t> rind;
 
   std::size_t count(Material m) const;
 };

@@ -8,7 +8,12 @@
 
 #include <chrono>
 #include <system_error>
+#include <cmath>
+#include <fstream>
+#include <memory>
+#include <sstream>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
@@ -22,6 +27,7 @@
 #include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
+#include "sim/grid_layout.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 
@@ -97,6 +103,14 @@ class StagingFolder {
   bool committed_ = false;
 };
 
+std::string readTextFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + file.string() + " for its checkpoints");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const auto& c : cycles)
@@ -128,31 +142,83 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   StagingFolder staging(summary.asset_dir);
   const std::filesystem::path& dir = staging.path();
   const AssetFolderSnapshot before = beginAssetFolder(dir);
+  const auto progress = [&](double fraction, const char* stage) {
+    if (options.progress) options.progress(fraction, stage);
+  };
   const auto check_cancel = [&] {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
   };
 
-  VoxelRock initial = buildInitialRock(shape, preset);
-  if (initial.count(Material::Rock) == 0)
-    throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",
-                     "check its size and center against grid.size, or raise grid.resolution");
-  const GridLayout& g = initial.layout;
-  summary.initial_rock = initial.count(Material::Rock);
+  // The simulation runs cycle by cycle so that its state can be checkpointed,
+  // or started from a checkpoint (SPEC §5).
+  std::unique_ptr<WeatheringSimulation> simulation;
+  nlohmann::ordered_json cycles_before =
+      nlohmann::ordered_json::array();  // a resumed bake's cycles up to its checkpoint
+  if (options.resume) {
+    const GridLayout& was = options.resume->snapshot.rock.layout;
+    const GridLayout now = computeGridLayout(preset);
+    if (was.nx != now.nx || was.ny != now.ny || was.nz != now.nz || was.margin != now.margin || was.h != now.h)
+      throw InputError(preset.locate("grid"), "grid",
+                       fmt::format("the checkpoint's grid is {}×{}×{} voxels of {:.4g} and this preset's {}×{}×{} of "
+                                   "{:.4g}",
+                                   was.nx, was.ny, was.nz, was.h, now.nx, now.ny, now.nz, now.h),
+                       "grid, shape, resolution and bubbles larger than the checkpoint's margin cannot change on "
+                       "resume; bake from the start instead");
+    simulation = std::make_unique<WeatheringSimulation>(options.resume->snapshot, preset);
+    summary.initial_rock = options.resume->snapshot.initial_rock;
+    cycles_before = options.resume->cycles;
+  } else {
+    VoxelRock initial = buildInitialRock(shape, preset);
+    if (initial.count(Material::Rock) == 0)
+      throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",
+                       "check its size and center against grid.size, or raise grid.resolution");
+    summary.initial_rock = initial.count(Material::Rock);
+    simulation = std::make_unique<WeatheringSimulation>(std::move(initial), preset);
+  }
+  const GridLayout g = simulation->rock().layout;
   stages["shape"] = clock.lap();
   const int planned = plannedCycles(preset, g.h);
-  spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles", preset.name, g.nx, g.ny, g.nz, g.h,
-               summary.initial_rock, planned);
+  spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles{}", preset.name, g.nx, g.ny, g.nz, g.h,
+               summary.initial_rock, planned,
+               options.resume ? fmt::format(" (resumed at cycle {})", simulation->cycle()) : "");
+
+  // Checkpoints: the text and overrides that give this preset, so resume can
+  // read it again and tell whether it changed.
+  Checkpoint checkpoint;
+  const double every = options.checkpoint_every;
+  double next_checkpoint = 0.0;
+  if (every > 0.0) {
+    checkpoint.preset_file = std::filesystem::absolute(preset.file);
+    checkpoint.preset_text = options.resume ? options.resume->preset_text : readTextFile(preset.file);
+    checkpoint.overrides = options.manifest.overrides;
+    checkpoint.preset = presetToJson(preset);
+    checkpoint.preset_hash = presetFingerprint(preset, {});
+    next_checkpoint = every * (std::floor(simulation->cycle() * g.h / every + 1e-9) + 1.0);
+  }
 
   int last_percent = -1;
-  WeatheringResult weathered = weatherRock(std::move(initial), preset, [&](const CycleStats& c) {
+  WeatheringResult weathered;
+  while (!simulation->finished()) {
+    const CycleStats& c = weathered.cycles.emplace_back(simulation->step());
     check_cancel();
+    progress(0.7 * c.cycle / planned, "simulate");
     const int percent = 100 * c.cycle / planned;
     if (percent / 10 != last_percent / 10) {
       spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", preset.name, c.cycle, planned, percent,
                    c.rock, c.exposed, c.decimated);
       last_percent = percent;
     }
-  });
+    if (every > 0.0 && c.time >= next_checkpoint - 1e-9 * g.h && !simulation->finished()) {
+      checkpoint.snapshot = simulation->snapshot();
+      checkpoint.cycles = cycles_before;
+      for (const auto& entry : cyclesToJson(weathered.cycles)) checkpoint.cycles.push_back(entry);
+      const auto file = dir / "checkpoints" / checkpointFileName(c.time);
+      writeCheckpoint(file, checkpoint);
+      spdlog::info("{}: checkpoint {}", preset.name, file.string());
+      while (next_checkpoint <= c.time + 1e-9 * g.h) next_checkpoint += every;
+    }
+  }
+  weathered.rock = simulation->release();
   stages["simulate"] = clock.lap();
   double curvature = 0, colluvium = 0, rockfall = 0;
   for (const auto& c : weathered.cycles)
@@ -160,7 +226,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   stages["simulate_curvature"] = curvature;
   stages["simulate_colluvium"] = colluvium;
   stages["simulate_rockfall"] = rockfall;
-  summary.cycles = int(weathered.cycles.size());
+  summary.cycles = int(cycles_before.size() + weathered.cycles.size());
   summary.final_rock = weathered.rock.count(Material::Rock);
   // No later stage reads integrity: its memory goes before the VDB and meshes.
   weathered.rock.integrity = RowSpans();
@@ -170,6 +236,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
     writeRockVdb(weathered.rock, dir / "rock.vdb");
     stages["write_vdb"] = clock.lap();
   } else {
+    progress(0.7, "mesh");
     const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, dir);
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
@@ -185,6 +252,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
 
     if (options.render) {
       check_cancel();
+      progress(0.85, "render");
       RenderRequest request;
       request.asset_dir = dir;
       request.params = preset.render;
@@ -217,7 +285,9 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   summary.seconds = clock.elapsed();
   stages["total"] = summary.seconds + options.load_seconds;
   nlohmann::ordered_json stats;
-  stats["cycles"] = cyclesToJson(weathered.cycles);
+  nlohmann::ordered_json all_cycles = cycles_before;
+  for (const auto& entry : cyclesToJson(weathered.cycles)) all_cycles.push_back(entry);
+  stats["cycles"] = all_cycles;
   stats["stages"] = stages;
   stats["preset"] = presetToJson(preset);
   check_cancel();
@@ -226,6 +296,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
                                      weathered.rock.count(Material::Colluvium)};
   writeManifest(before, preset, options.manifest, options.mesh, options.render, manifest_stats, {{"stages", stages}});
   staging.commit();
+  progress(1.0, "done");
   return summary;
 }
 

@@ -12,9 +12,12 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
+#include <string>
 
 #include "inputs/resolve_shape.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/manifest.h"
 #include "preset/preset.h"
 
@@ -30,6 +33,15 @@ struct BakeOptions {
   // When set and it turns true, the bake stops at the next cycle or stage
   // boundary by throwing BakeCancelled, before writing manifest.json.
   const std::atomic<bool>* cancel = nullptr;
+  // When set, told how far the bake is (0..1) and which stage runs, at every
+  // cycle and stage boundary (the studio's bake-final progress bar).
+  std::function<void(double fraction, const std::string& stage)> progress;
+  // > 0: write OUT/<name>/checkpoints/<time>.rbk each time the simulation
+  // passes a multiple of this time (pipeline/checkpoint.h).
+  double checkpoint_every = 0.0;
+  // When set, the simulation starts from this checkpoint's state instead of
+  // the initial rock (`rockbake resume`); the preset must be on its grid.
+  const Checkpoint* resume = nullptr;
 };
 
 class BakeCancelled : public std::runtime_error {

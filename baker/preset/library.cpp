@@ -108,7 +108,8 @@ LibraryEntry readEntry(const Field& e, const std::filesystem::path& base_dir, co
   const Field preset = e.require("preset", "an entry needs 'preset' (a preset file, relative to the library file)");
   entry.preset = preset.string();
   entry.preset_file = base_dir / entry.preset;
-  if (entry.preset.empty() || !std::filesystem::is_regular_file(entry.preset_file))
+  std::error_code unreadable;  // e.g. a name too long for the file system: no file, not a crash
+  if (entry.preset.empty() || !std::filesystem::is_regular_file(entry.preset_file, unreadable))
     preset.fail("no preset file at " + entry.preset_file.string(), "preset paths are relative to the library file");
 
   if (e.has("name")) {

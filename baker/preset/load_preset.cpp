@@ -18,8 +18,8 @@
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
-#include "preset/yaml_field.h"
 #include "preset/render_templates.h"
+#include "preset/yaml_field.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {
@@ -211,8 +211,122 @@ DurabilityGraph readGraph(const Field& f) {
   return graph;
 }
 
+// Runs one part of the validation: a problem is recorded (with where its reading stopped) and the
+// next part goes on, so one run lists every problem; loading then reports the first.
+template <typename Read>
+void validatePart(const Source& source, Read&& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    source.reads->failed.push_back(e.keyPath());
+    source.problems->push_back(e);
+  }
+}
+
+// The bubble graph: bands bottom to top, the last reaching 1.
+std::vector<BubbleBand> readBands(const Field& bands, double h, const Source& source) {
+  std::vector<BubbleBand> out;
+  if (bands.size() == 0) bands.fail("needs at least one band");
+  // Band by band, so that linting lists the problems of every band.
+  for (std::size_t i = 0; i < bands.size(); ++i)
+    validatePart(source, [&] {
+      const Field b = bands.item(i);
+      b.expectMap();
+      BubbleBand band;
+      if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
+      band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
+      if (!out.empty() && band.up_to <= out.back().up_to)
+        b.at("up_to").fail("bands go bottom to top: up_to must increase");
+      if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
+      band.bubble = readBubble(b.at("bubble"));
+      checkBubbleSize(band.bubble, b.at("bubble"), h);
+      if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
+      if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
+      out.push_back(band);
+    });
+  if (out.size() == bands.size() && out.back().up_to != 1.0)
+    bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
+  return out;
+}
+
+// The decimation response: power, threshold or curve.
+ResponseParams readResponse(const Field& r) {
+  const std::string kind = r.oneOf({"power", "threshold", "curve"});
+  if (kind == "power") return {ResponseParams::Kind::Power, r.at("power").positive(), {}};
+  if (kind == "threshold")
+    return {ResponseParams::Kind::Threshold, r.at("threshold").numberIn(0.0, 1.0, false, true), {}};
+  ResponseParams response;
+  const Field c = r.at("curve");
+  response.kind = ResponseParams::Kind::Curve;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Field pt = c.item(i);
+    if (pt.size() != 2) pt.fail("expected [x, y]");
+    const double x = pt.item(0).numberIn(0.0, 1.0), y = pt.item(1).numberIn(0.0, 1.0);
+    if (!response.curve.empty() && x <= response.curve.back()[0]) pt.item(0).fail("x must increase along the curve");
+    response.curve.push_back({x, y});
+  }
+  if (response.curve.size() < 2 || response.curve.front()[0] != 0.0 || response.curve.back()[0] != 1.0)
+    c.fail("the curve must start at x = 0 and end at x = 1");
+  return response;
+}
+
+// shape.variation (SPEC §2.8).
+ShapeVariation readVariation(const Field& f) {
+  f.expectMap();
+  ShapeVariation v;
+  v.amplitude =
+      f.require("amplitude", "a variation needs 'amplitude' (world units; 0 keeps the shape)").numberIn(0.0, 1e6);
+  if (f.has("period")) v.period = f.at("period").positive();
+  if (f.has("octaves")) v.octaves = int(f.at("octaves").integer(1, 8));
+  return v;
+}
+
+// durability.strata, joints and rind (SPEC §2.4).
+StrataParams readStrata(const Field& f) {
+  f.expectMap();
+  StrataParams s;
+  if (f.has("dip")) s.dip = f.at("dip").numberIn(0.0, 90.0);
+  if (f.has("strike")) s.strike = f.at("strike").numberIn(-360.0, 360.0);
+  if (f.has("warp")) {
+    const Field w = f.at("warp");
+    w.expectMap();
+    s.warp_amplitude = w.require("amplitude", "a warp needs 'amplitude' (world units)").numberIn(0.0, 1e6);
+    s.warp_period = w.require("period", "a warp needs 'period' (world units)").positive();
+  }
+  return s;
+}
+
+JointSet readJointSet(const Field& f) {
+  f.expectMap();
+  JointSet j;
+  if (f.has("strike")) j.strike = f.at("strike").numberIn(-360.0, 360.0);
+  if (f.has("dip")) j.dip = f.at("dip").numberIn(0.0, 90.0);
+  j.spacing = f.require("spacing", "a joint set needs 'spacing' (world units between its planes)").positive();
+  if (f.has("jitter")) {
+    j.jitter = f.at("jitter").number();
+    if (j.jitter < 0 || j.jitter >= j.spacing)
+      f.at("jitter").fail("must be at least 0 and less than spacing (" + formatNumber(j.spacing) + "), found " +
+                          formatNumber(j.jitter));
+  }
+  j.width = f.require("width", "a joint set needs 'width' (world units either side of a plane)").positive();
+  if (j.width >= j.spacing)
+    f.at("width").fail("must be less than spacing (" + formatNumber(j.spacing) + "), found " + formatNumber(j.width),
+                       "a joint zone as wide as the spacing leaves no sound rock between the planes");
+  j.factor = f.require("factor", "a joint set needs 'factor' (the durability multiplier at a plane, > 0)").positive();
+  return j;
+}
+
+RindParams readRind(const Field& f) {
+  f.expectMap();
+  RindParams r;
+  r.depth = f.require("depth", "a rind needs 'depth' (world units below the initial surface)").positive();
+  r.factor = f.require("factor", "a rind needs 'factor' (how many times as durable, > 0)").positive();
+  return r;
+}
+
 void readShape(const Field& f, Preset& p) {
-  f.has("center");  // asked first, so that it is known even when the kind is missing
+  f.has("center");  // asked first, so that they are known even when the kind is missing
+  f.has("variation");
   const std::string kind = f.oneOf({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"});
   const Field k = f.at(kind);
   if (kind == "box") {
@@ -237,7 +351,8 @@ void readShape(const Field& f, Preset& p) {
     const std::filesystem::path given = k.at("path").string();
     image.path =
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
-    if (!std::filesystem::is_regular_file(image.path))
+    std::error_code unreadable;  // e.g. a name too long for the file system: no file, not a crash
+    if (!std::filesystem::is_regular_file(image.path, unreadable))
       k.at("path").fail("no image file at " + image.path.string(), k.at("path").relativePathHint());
     image.mode = (k.has("mode") ? k.at("mode").choice({"extrude", "revolve"}) : "extrude") == "revolve"
                      ? ImageMode::Revolve
@@ -250,24 +365,14 @@ void readShape(const Field& f, Preset& p) {
     const std::filesystem::path given = k.at("path").string();
     mesh.path =
         std::filesystem::absolute(given.is_absolute() ? given : k.at("path").folder() / given).lexically_normal();
-    if (!std::filesystem::is_regular_file(mesh.path))
+    std::error_code unreadable;
+    if (!std::filesystem::is_regular_file(mesh.path, unreadable))
       k.at("path").fail("no mesh file at " + mesh.path.string(), k.at("path").relativePathHint());
     if (k.has("scale")) mesh.scale = k.at("scale").numberIn(0.0, kMaxWorldLength, true);
     p.shape.kind = mesh;
   }
   if (f.has("center")) p.shape.center = f.at("center").vec3();
-}
-
-// Runs one part of the validation. Loading stops at the first problem; linting (source.problems set)
-// records it and goes on with the next part, so one run lists every problem.
-template <typename Read>
-void validatePart(const Source& source, Read&& read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    source.reads->failed.push_back(e.keyPath());
-    source.problems->push_back(e);
-  }
+  if (f.has("variation")) p.shape.variation = readVariation(f.at("variation"));
 }
 
 // Reads every part of the schema; each problem goes to source.problems (unknown keys first,
@@ -321,14 +426,25 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     if (!root.has("durability")) return;
     const Field d = root.at("durability");
     p.durability.graph = readGraph(d);
+    if (d.has("strata")) p.durability.strata = readStrata(d.at("strata"));
+    if (d.has("joints")) {
+      const Field js = d.at("joints");
+      for (std::size_t i = 0; i < js.size(); ++i) p.durability.joints.push_back(readJointSet(js.item(i)));
+    }
+    if (d.has("rind")) p.durability.rind = readRind(d.at("rind"));
     if (d.has("keyframes")) {
       const Field ks = d.at("keyframes");
       for (std::size_t i = 0; i < ks.size(); ++i) {
         const Field k = ks.item(i);
         DurabilityKeyframe keyframe;
-        keyframe.graph = readGraph(k);
+        const DurabilityGraph graph = readGraph(k);
         if (!k.has("at")) k.fail("a keyframe needs 'at' (the simulation time it takes effect)");
-        if (!k.has("points")) k.fail("a keyframe needs 'points' (the graph it switches to)");
+        if (!k.has("points") && !k.has("bubbles") && !k.has("response"))
+          k.fail("a keyframe needs 'points' (the graph it switches to), 'bubbles' or 'response'");
+        if (k.has("noise") && !k.has("points")) k.at("noise").fail("noise needs the keyframe's 'points'");
+        if (k.has("points")) keyframe.graph = graph;
+        if (k.has("bubbles")) keyframe.bubbles = readBands(k.at("bubbles"), h, source);
+        if (k.has("response")) keyframe.response = readResponse(k.at("response"));
         keyframe.at = k.at("at").numberIn(0.0, 1e9);
         if (!p.durability.keyframes.empty() && keyframe.at < p.durability.keyframes.back().at)
           k.at("at").fail("keyframes must be in time order");
@@ -339,27 +455,7 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
 
   validatePart(source, [&] {
     if (!root.has("bubbles")) return;
-    const Field bands = root.at("bubbles");
-    if (bands.size() == 0) bands.fail("needs at least one band");
-    // Band by band, so that linting lists the problems of every band.
-    for (std::size_t i = 0; i < bands.size(); ++i)
-      validatePart(source, [&] {
-        const Field b = bands.item(i);
-        b.expectMap();
-        BubbleBand band;
-        if (!b.has("up_to")) b.fail("a band needs 'up_to' (its top altitude, 0..1)");
-        band.up_to = b.at("up_to").numberIn(0.0, 1.0, true, false);
-        if (!p.bubbles.empty() && band.up_to <= p.bubbles.back().up_to)
-          b.at("up_to").fail("bands go bottom to top: up_to must increase");
-        if (!b.has("bubble")) b.fail("a band needs a 'bubble'");
-        band.bubble = readBubble(b.at("bubble"));
-        checkBubbleSize(band.bubble, b.at("bubble"), h);
-        if (b.has("spheroidal")) band.spheroidal = b.at("spheroidal").numberIn(0.0, 1e6);
-        if (b.has("cavernous")) band.cavernous = b.at("cavernous").numberIn(0.0, 1e6);
-        p.bubbles.push_back(band);
-      });
-    if (p.bubbles.size() == bands.size() && p.bubbles.back().up_to != 1.0)
-      bands.item(bands.size() - 1).at("up_to").fail("the last band must reach 1 (the top of grid.size)");
+    p.bubbles = readBands(root.at("bubbles"), h, source);
   });
   if (!root.has("bubbles")) {
     // One band, a sphere of a sixteenth of the longest side: a moderate, resolution-independent default,
@@ -374,26 +470,7 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
 
   validatePart(source, [&] {
     if (!root.has("response")) return;
-    const Field r = root.at("response");
-    const std::string kind = r.oneOf({"power", "threshold", "curve"});
-    if (kind == "power") {
-      p.response = {ResponseParams::Kind::Power, r.at("power").positive(), {}};
-    } else if (kind == "threshold") {
-      p.response = {ResponseParams::Kind::Threshold, r.at("threshold").numberIn(0.0, 1.0, false, true), {}};
-    } else {
-      const Field c = r.at("curve");
-      p.response.kind = ResponseParams::Kind::Curve;
-      for (std::size_t i = 0; i < c.size(); ++i) {
-        const Field pt = c.item(i);
-        if (pt.size() != 2) pt.fail("expected [x, y]");
-        const double x = pt.item(0).numberIn(0.0, 1.0), y = pt.item(1).numberIn(0.0, 1.0);
-        if (!p.response.curve.empty() && x <= p.response.curve.back()[0])
-          pt.item(0).fail("x must increase along the curve");
-        p.response.curve.push_back({x, y});
-      }
-      if (p.response.curve.size() < 2 || p.response.curve.front()[0] != 0.0 || p.response.curve.back()[0] != 1.0)
-        c.fail("the curve must start at x = 0 and end at x = 1");
-    }
+    p.response = readResponse(root.at("response"));
   });
 
   validatePart(source, [&] {

@@ -57,11 +57,21 @@ struct MeshShape {
 };
 using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape, MeshShape>;
 
+// Seeded noise on the shape's boundary, so each seed starts from a different
+// rock of the same kind: the surface moves along its normal by amplitude ×
+// fractal Perlin noise (at most `amplitude`, typically about a third of it).
+struct ShapeVariation {
+  double amplitude = 0.0;  // world units, >= 0; 0 = the shape as given
+  double period = 1.0;     // world units, > 0
+  int octaves = 1;         // 1..8
+};
+
 struct ShapeParams {
   ShapeKind kind = BoxShape{{2.0, 2.0, 2.0}};
   // Where the shape's centre (x, y) and base (z) go; default: centred in x, y,
   // resting on the ground.
   std::optional<Vec3d> center;
+  std::optional<ShapeVariation> variation;  // none: the shape exactly
 };
 
 // ---- durability graph (SPEC §2.4) ----
@@ -76,14 +86,28 @@ struct DurabilityGraph {
   // One entry per segment (points.size() - 1 entries) or empty for none.
   std::vector<std::optional<NoiseParams>> noise;
 };
-struct DurabilityKeyframe {
-  double at = 0.0;  // simulation time (world units of time), >= 0
-  DurabilityGraph graph;
+// Geology beyond the paper's altitude graph (SPEC §2.4). Planes strike
+// `strike` degrees clockwise from +y (seen from above) and dip `dip` degrees
+// (0..90) towards the strike's right.
+struct StrataParams {
+  double dip = 0.0;             // degrees, 0..90; 0 = the paper's flat beds
+  double strike = 0.0;          // degrees
+  double warp_amplitude = 0.0;  // world units the beds are folded along their normal, >= 0
+  double warp_period = 1.0;     // world units, > 0
 };
-struct DurabilityParams {
-  DurabilityGraph graph;
-  std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
+struct JointSet {
+  double strike = 0.0;   // degrees
+  double dip = 90.0;     // degrees, 0..90
+  double spacing = 1.0;  // world units between neighbouring planes, > 0
+  double jitter = 0.0;   // world units: planes are spacing ± jitter apart, 0 <= jitter < spacing
+  double width = 0.05;   // world units: durability changes within `width` of a plane, 0 < width < spacing
+  double factor = 0.3;   // durability multiplier near a plane, > 0
 };
+struct RindParams {
+  double depth = 0.1;   // world units below the initial surface, > 0
+  double factor = 2.0;  // durability multiplier in the rind, > 0
+};
+
 
 // ---- bubbles (SPEC §2.3) ----
 struct BubbleSpec {
@@ -112,6 +136,24 @@ struct ResponseParams {
   Kind kind = Kind::Power;
   double value = 1.0;                        // power p > 0, or threshold t in [0, 1)
   std::vector<std::array<double, 2>> curve;  // Curve: x strictly increasing from 0 to 1
+};
+
+// ---- keyframes (SPEC §2.4) ----
+// An edit during the simulation (SPEC §2.4, §7): from time `at` on, each part
+// it carries replaces the one in effect. At least one part is set.
+struct DurabilityKeyframe {
+  double at = 0.0;                                 // simulation time (world units of time), >= 0
+  std::optional<DurabilityGraph> graph;            // points and noise; durability reassigned to standing rock
+  std::optional<std::vector<BubbleBand>> bubbles;  // the bubble graph
+  std::optional<ResponseParams> response;          // the decimation response
+};
+struct DurabilityParams {
+  DurabilityGraph graph;
+  std::vector<DurabilityKeyframe> keyframes;  // sorted by `at`
+  // The rock's structure: it stays through keyframes (they replace the graph only).
+  std::optional<StrataParams> strata;  // none: the graph is read by altitude
+  std::vector<JointSet> joints;
+  std::optional<RindParams> rind;
 };
 
 // ---- rockfall and colluvium (SPEC §2.6, §2.7) ----

@@ -35,6 +35,28 @@ json graphToJson(const DurabilityGraph& g) {
   return out;
 }
 
+json bandsToJson(const std::vector<BubbleBand>& bubbles) {
+  json bands = json::array();
+  for (const auto& b : bubbles)
+    bands.push_back({{"up_to", b.up_to},
+                     {"bubble", bubbleToJson(b.bubble)},
+                     {"spheroidal", b.spheroidal},
+                     {"cavernous", b.cavernous}});
+  return bands;
+}
+
+json responseToJson(const ResponseParams& r) {
+  switch (r.kind) {
+    case ResponseParams::Kind::Power:
+      return {{"power", r.value}};
+    case ResponseParams::Kind::Threshold:
+      return {{"threshold", r.value}};
+    case ResponseParams::Kind::Curve:
+      return {{"curve", r.curve}};
+  }
+  return nullptr;
+}
+
 json shapeToJson(const ShapeParams& shape) {
   struct Visitor {
     json operator()(const BoxShape& b) const { return {{"box", {{"size", b.size}}}}; }
@@ -55,6 +77,9 @@ json shapeToJson(const ShapeParams& shape) {
   };
   json out = std::visit(Visitor{}, shape.kind);
   out["center"] = shape.center ? json(*shape.center) : json(nullptr);
+  // Only when given, so presets without it keep their fingerprint.
+  if (const auto& v = shape.variation)
+    out["variation"] = {{"amplitude", v->amplitude}, {"period", v->period}, {"octaves", v->octaves}};
   return out;
 }
 
@@ -94,30 +119,34 @@ json presetToJson(const Preset& p) {
   json durability = graphToJson(p.durability.graph);
   json keyframes = json::array();
   for (const auto& k : p.durability.keyframes) {
-    json kf = graphToJson(k.graph);
+    // Only the parts the keyframe carries (a graph-only keyframe reads as it always has).
+    json kf = k.graph ? graphToJson(*k.graph) : json::object();
     kf["at"] = k.at;
+    if (k.bubbles) kf["bubbles"] = bandsToJson(*k.bubbles);
+    if (k.response) kf["response"] = responseToJson(*k.response);
     keyframes.push_back(kf);
   }
   durability["keyframes"] = keyframes;
-  out["durability"] = durability;
-  json bands = json::array();
-  for (const auto& b : p.bubbles)
-    bands.push_back({{"up_to", b.up_to},
-                     {"bubble", bubbleToJson(b.bubble)},
-                     {"spheroidal", b.spheroidal},
-                     {"cavernous", b.cavernous}});
-  out["bubbles"] = bands;
-  switch (p.response.kind) {
-    case ResponseParams::Kind::Power:
-      out["response"] = {{"power", p.response.value}};
-      break;
-    case ResponseParams::Kind::Threshold:
-      out["response"] = {{"threshold", p.response.value}};
-      break;
-    case ResponseParams::Kind::Curve:
-      out["response"] = {{"curve", p.response.curve}};
-      break;
+  // Geology only when given, so presets without it keep their fingerprint.
+  if (const auto& s = p.durability.strata)
+    durability["strata"] = {{"dip", s->dip},
+                            {"strike", s->strike},
+                            {"warp", {{"amplitude", s->warp_amplitude}, {"period", s->warp_period}}}};
+  if (!p.durability.joints.empty()) {
+    json joints = json::array();
+    for (const auto& j : p.durability.joints)
+      joints.push_back({{"strike", j.strike},
+                        {"dip", j.dip},
+                        {"spacing", j.spacing},
+                        {"jitter", j.jitter},
+                        {"width", j.width},
+                        {"factor", j.factor}});
+    durability["joints"] = joints;
   }
+  if (const auto& r = p.durability.rind) durability["rind"] = {{"depth", r->depth}, {"factor", r->factor}};
+  out["durability"] = durability;
+  out["bubbles"] = bandsToJson(p.bubbles);
+  out["response"] = responseToJson(p.response);
   out["rockfall"] = {{"mode", rockfallName(p.rockfall.mode)}};
   out["colluvium"] = {
       {"yield", p.colluvium.yield}, {"talus_angle", p.colluvium.talus_angle}, {"removal", p.colluvium.removal}};

@@ -32,7 +32,8 @@ std::vector<InputError> unreadKeyProblems(const Source& source) {
       if (reads.asked.count(join(map.path, key))) continue;
       const Field bad(entry.first, join(map.path, key), source, map.mark);
       const std::optional<std::string> best = closestName(key, valid);
-      if (partial && !best) continue;
+      // ...and only of a key the map lacks: beside a given 'points', 'joints' is no misspelling.
+      if (partial && (!best || map.node[*best].IsDefined())) continue;
       problems.emplace_back(
           bad.location(), bad.path(),
           best ? "unknown key '" + key + "'; did you mean '" + *best + "'?" : "unknown key '" + key + "'",

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <deque>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "core/hash.h"
 
@@ -151,6 +153,13 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
           }
         }
   }
+}
+
+void ColluviumModel::setAccumulators(std::vector<std::int64_t> accumulators) {
+  if (accumulators.size() != accumulator_.size())
+    throw std::invalid_argument("colluvium accumulators: " + std::to_string(accumulators.size()) +
+                                " columns for a grid of " + std::to_string(accumulator_.size()));
+  accumulator_ = std::move(accumulators);
 }
 
 double ColluviumModel::pendingUnits() const {

@@ -38,6 +38,10 @@ class ColluviumModel {
 
   // Fractional units waiting in the accumulators (for conservation checks).
   double pendingUnits() const;
+  // The accumulators themselves, per (x, y) column (x fastest): part of a
+  // simulation snapshot. setAccumulators requires nx * ny entries.
+  const std::vector<std::int64_t>& accumulators() const { return accumulator_; }
+  void setAccumulators(std::vector<std::int64_t> accumulators);
 
   static constexpr std::int64_t kUnit = std::int64_t(1) << 24;  // one voxel in accumulator units
 

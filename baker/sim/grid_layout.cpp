@@ -13,6 +13,10 @@ GridLayout computeGridLayout(const SimParams& preset) {
   g.h = std::max({size[0], size[1], size[2]}) / double(preset.grid.resolution);
   int reach = 0;
   for (const auto& band : preset.bubbles) reach = std::max(reach, bubbleReach(band.bubble, g.h));
+  // Bubble graphs that keyframes switch to later need the same margin.
+  for (const auto& k : preset.durability.keyframes)
+    if (k.bubbles)
+      for (const auto& band : *k.bubbles) reach = std::max(reach, bubbleReach(band.bubble, g.h));
   g.margin = reach + 1;
   const auto cells = [&](double extent) { return std::max(1, int(std::lround(extent / g.h))); };
   g.nx = cells(size[0]) + 2 * g.margin;

@@ -311,6 +311,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
         rock.material[to] = crumble ? Material::Colluvium : rock.material[c];
         rock.integrity.set(to, rock.integrity[c]);
         rock.durability.set(to, crumble ? 0.f : rock.durability[c]);
+        if (!rock.rind.empty()) rock.rind[to] = crumble ? 0 : rock.rind[c];
         rock.material[c] = Material::Air;
         rock.durability.set(c, 0.f);
         outcome.changed.push_back(c);

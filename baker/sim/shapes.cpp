@@ -7,6 +7,8 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
+#include "core/hash.h"
+#include "sim/distance_field.h"
 #include "sim/durability.h"
 #include "sim/grid_layout.h"
 #include "sim/mesh_shape.h"
@@ -98,6 +100,29 @@ TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
   return mesh;
 }
 
+// SPEC §2.8 variation: the boundary moved along its normal by seeded noise, up
+// to `amplitude` out (noise > 0) or in: rock where the signed distance to the
+// shape is below the displacement.
+void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v, std::uint64_t seed) {
+  const std::vector<float> distance = signedDistance(inside, g, v.amplitude + 2 * g.h);
+  const PerlinNoise noise(counterHash(seed, purposeId("shape-variation"), 0, 0));
+  // Off the lattice, where Perlin noise is 0 for every seed.
+  Vec3d offset;
+  for (std::size_t a = 0; a < 3; ++a)
+    offset[a] = 64.0 * unitInterval(counterHash(seed, purposeId("shape-variation-offset"), 0, a));
+  tbb::parallel_for(0, g.nz, [&](int z) {
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const std::size_t i = g.index(x, y, z);
+        if (std::abs(distance[i]) > v.amplitude + g.h) continue;  // beyond the noise's reach
+        const Vec3d p = g.center(x, y, z);
+        const double n = noise.fractal(p[0] / v.period + offset[0], p[1] / v.period + offset[1],
+                                       p[2] / v.period + offset[2], v.octaves);
+        inside[i] = double(distance[i]) < v.amplitude * n ? 1 : 0;
+      }
+  });
+}
+
 }  // namespace
 
 VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) {
@@ -116,12 +141,27 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
     inside = insideTest(shape, center[0], center[1], center[2], preset);
   }
 
+  // Which voxel centres the shape holds, before the domain clips it.
+  std::vector<std::uint8_t> flags = std::move(mesh_inside);
+  if (flags.empty()) {
+    flags.assign(g.cellCount(), 0);
+    tbb::parallel_for(0, g.nz, [&](int z) {
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) {
+          const Vec3d p = g.center(x, y, z);
+          flags[g.index(x, y, z)] = inside(p[0], p[1], p[2]) ? 1 : 0;
+        }
+    });
+  }
+  if (const auto& variation = preset.shape.variation; variation && variation->amplitude > 0)
+    varyBoundary(flags, g, *variation, preset.seed);
+
   std::vector<char> clipped(std::size_t(g.nz), 0);
   tbb::parallel_for(0, g.nz, [&](int z) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x) {
         const Vec3d p = g.center(x, y, z);
-        if (mesh_inside.empty() ? !inside(p[0], p[1], p[2]) : !mesh_inside[g.index(x, y, z)]) continue;
+        if (!flags[g.index(x, y, z)]) continue;
         const bool in_domain = p[0] > 0 && p[1] > 0 && p[0] < domain[0] && p[1] < domain[1] && p[2] < domain[2];
         if (in_domain)
           rock.material[g.index(x, y, z)] = Material::Rock;
@@ -133,7 +173,9 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
     spdlog::warn("the shape reaches beyond grid.size and was clipped to it");
 
   resetRockValues(rock);
-  assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0));
+  if (preset.durability.rind) rock.rind = rindCoverage(rock, preset.durability.rind->depth);
+  assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0),
+                   Geology(preset.durability, preset.grid.size, preset.seed));
   return rock;
 }
 

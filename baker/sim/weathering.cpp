@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -29,30 +31,30 @@ struct BubbleGraph {
   int reach = 0;
 };
 
-std::vector<BubbleEstimator> buildEstimators(const SimParams& preset, double h, int& reach) {
+std::vector<BubbleEstimator> buildEstimators(const std::vector<BubbleBand>& bubbles, double h, int& reach) {
   std::vector<BubbleEstimator> estimators;
   reach = 1;  // exposure looks at face neighbours even for sub-voxel bubbles
-  for (const auto& band : preset.bubbles) {
+  for (const auto& band : bubbles) {
     estimators.push_back(makeBubbleEstimator(band.bubble, h));
     reach = std::max(reach, estimators.back().reach);
   }
   return estimators;
 }
 
-BubbleGraph bindBubbleGraph(const SimParams& preset, const GridLayout& g, const AirField& field,
+BubbleGraph bindBubbleGraph(const std::vector<BubbleBand>& bubbles, const GridLayout& g, const AirField& field,
                             const std::vector<BubbleEstimator>& estimators) {
   BubbleGraph graph;
-  for (std::size_t b = 0; b < preset.bubbles.size(); ++b) {
+  for (std::size_t b = 0; b < bubbles.size(); ++b) {
     graph.estimators.push_back(bindEstimator(field, estimators[b]));
-    graph.spheroidal.push_back(preset.bubbles[b].spheroidal);
-    graph.cavernous.push_back(preset.bubbles[b].cavernous);
+    graph.spheroidal.push_back(bubbles[b].spheroidal);
+    graph.cavernous.push_back(bubbles[b].cavernous);
   }
   graph.band_of_layer.resize(std::size_t(g.nz));
   for (int z = 0; z < g.nz; ++z) {
     const double a = g.altitude(z);
-    int band = int(preset.bubbles.size()) - 1;  // above the domain: the top band
-    for (int b = 0; b < int(preset.bubbles.size()); ++b)
-      if (a <= preset.bubbles[std::size_t(b)].up_to) {
+    int band = int(bubbles.size()) - 1;  // above the domain: the top band
+    for (int b = 0; b < int(bubbles.size()); ++b)
+      if (a <= bubbles[std::size_t(b)].up_to) {
         band = b;
         break;
       }
@@ -152,17 +154,33 @@ int plannedCycles(const SimParams& preset, double h) {
   return std::max(1, int(std::ceil(preset.stop.time.value_or(0.0) / h - 1e-9)));
 }
 
+// The widest reach of any keyframe's bubbles, so the air field is built wide
+// enough once (it is widened later only if keyframes are replaced).
+static int keyframeReach(const SimParams& params, double h) {
+  int reach = 1;
+  for (const auto& k : params.durability.keyframes)
+    if (k.bubbles) {
+      int r = 1;
+      buildEstimators(*k.bubbles, h, r);
+      reach = std::max(reach, r);
+    }
+  return reach;
+}
+
 struct WeatheringSimulation::State {
   State(VoxelRock initial, SimParams p)
       : preset(std::move(p)),
         rock(std::move(initial)),
-        estimators(buildEstimators(preset, rock.layout.h, reach)),
-        field(rock, reach),
-        graph(bindBubbleGraph(preset, rock.layout, field, estimators)),
+        bubbles(preset.bubbles),
+        response(preset.response),
+        estimators(buildEstimators(bubbles, rock.layout.h, reach)),
+        field(rock, std::max(reach, keyframeReach(preset, rock.layout.h))),
+        graph(bindBubbleGraph(bubbles, rock.layout, field, estimators)),
         exposed(rock.layout, ExposedRock{&rock, &field}),
         colluvium_count(rock.count(Material::Colluvium)),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
+        geology(preset.durability, preset.grid.size, preset.seed),
         planned_cycles(plannedCycles(preset, rock.layout.h)),
         initial_rock(rock.count(Material::Rock)),
         rock_count(initial_rock) {
@@ -176,8 +194,36 @@ struct WeatheringSimulation::State {
     return rock.layout.ground && (preset.colluvium.yield > 0.0 || preset.rockfall.mode == RockfallMode::Crumble);
   }
 
-  const SimParams preset;  // a copy: the simulation owns its parameters
+  // A keyframe's bubble graph takes over: the estimators are rebuilt and
+  // re-bound, the air field widened first if they reach past its apron.
+  void useBubbles(const std::vector<BubbleBand>& next) {
+    bubbles = next;
+    estimators = buildEstimators(bubbles, rock.layout.h, reach);
+    if (reach > field.apron()) field = AirField(rock, reach);
+    graph = bindBubbleGraph(bubbles, rock.layout, field, estimators);
+  }
+
+  // Directability (SPEC §2.4): every keyframe whose time has come by
+  // `time` replaces the durability graph for all rock still standing
+  // (integrities are kept), and the bubble graph and response it carries.
+  // `durability` false when resuming: the durability is already in the rock.
+  void reachKeyframes(double time, bool durability) {
+    const auto& keyframes = preset.durability.keyframes;
+    const double h = rock.layout.h;
+    while (next_keyframe < keyframes.size() && keyframes[next_keyframe].at <= time + 1e-9 * h) {
+      const DurabilityKeyframe& k = keyframes[next_keyframe];
+      if (k.graph && durability)
+        assignDurability(rock, DurabilityField(*k.graph, preset.seed, next_keyframe + 1), geology);
+      if (k.bubbles) useBubbles(*k.bubbles);
+      if (k.response) response = *k.response;
+      ++next_keyframe;
+    }
+  }
+
+  SimParams preset;  // a copy: the simulation owns its parameters
   VoxelRock rock;
+  std::vector<BubbleBand> bubbles;  // in effect: the preset's, or the latest keyframe's
+  ResponseParams response;          // likewise
   int reach = 1;
   std::vector<BubbleEstimator> estimators;
   AirField field;
@@ -189,6 +235,7 @@ struct WeatheringSimulation::State {
   std::size_t colluvium_count;
   RockfallSolver rockfall;
   ColluviumModel colluvium_model;
+  Geology geology;  // the rock's structure, which every keyframe's graph is read through
   int planned_cycles;
   int cycle = 0;
   std::size_t initial_rock, rock_count;
@@ -198,7 +245,68 @@ struct WeatheringSimulation::State {
 
 WeatheringSimulation::WeatheringSimulation(VoxelRock rock, SimParams params)
     : state_(std::make_unique<State>(std::move(rock), std::move(params))) {}
+
+WeatheringSimulation::WeatheringSimulation(SimulationSnapshot snapshot, SimParams params) {
+  const GridLayout& g = snapshot.rock.layout;
+  const auto fits = [&](const RowSpans& spans) {
+    const std::size_t rows = std::size_t(g.ny) * std::size_t(g.nz);
+    return spans.nx == g.nx && spans.first.size() == rows && spans.values.size() == rows;
+  };
+  if (snapshot.cycle < 0 || snapshot.rock.material.size() != g.cellCount() || !fits(snapshot.rock.integrity) ||
+      !fits(snapshot.rock.durability) || (!snapshot.rock.rind.empty() && snapshot.rock.rind.size() != g.cellCount()))
+    throw std::invalid_argument("simulation snapshot: its grids do not match its layout");
+  const int cycle = snapshot.cycle;
+  state_ = std::make_unique<State>(std::move(snapshot.rock), std::move(params));
+  State& st = *state_;
+  st.colluvium_model.setAccumulators(std::move(snapshot.colluvium_columns));
+  st.cycle = cycle;
+  st.initial_rock = snapshot.initial_rock;
+  st.rock_count = st.rock.count(Material::Rock);
+  // The keyframes the cycles already run have reached (the last one ran at time (cycle - 1) h).
+  if (cycle > 0) st.reachKeyframes((cycle - 1) * st.rock.layout.h, false);
+}
+
 WeatheringSimulation::~WeatheringSimulation() = default;
+
+int WeatheringSimulation::cycle() const {
+  return state_->cycle;
+}
+
+SimulationCounts WeatheringSimulation::counts() const {
+  return {state_->rock_count, state_->exposed.cells().size(), state_->colluvium_count};
+}
+
+SimulationSnapshot WeatheringSimulation::snapshot() const {
+  const State& st = *state_;
+  return {st.rock, st.colluvium_model.accumulators(), st.cycle, st.initial_rock};
+}
+
+const SimParams& WeatheringSimulation::params() const {
+  return state_->preset;
+}
+
+SimParams WeatheringSimulation::activeParams() const {
+  SimParams active = state_->preset;
+  active.bubbles = state_->bubbles;
+  active.response = state_->response;
+  return active;
+}
+
+void WeatheringSimulation::setKeyframes(std::vector<DurabilityKeyframe> keyframes) {
+  State& st = *state_;
+  const auto& reached = st.preset.durability.keyframes;
+  if (keyframes.size() < st.next_keyframe)
+    throw std::invalid_argument("setKeyframes: " + std::to_string(st.next_keyframe) +
+                                " keyframes were already reached; they must be kept");
+  for (std::size_t i = 0; i < st.next_keyframe; ++i)
+    if (keyframes[i].at != reached[i].at)
+      throw std::invalid_argument("setKeyframes: keyframe " + std::to_string(i) +
+                                  " was already reached; it must be kept");
+  for (std::size_t i = 1; i < keyframes.size(); ++i)
+    if (keyframes[i].at < keyframes[i - 1].at)
+      throw std::invalid_argument("setKeyframes: keyframes must be in time order");
+  st.preset.durability.keyframes = std::move(keyframes);
+}
 
 const VoxelRock& WeatheringSimulation::rock() const {
   return state_->rock;
@@ -223,14 +331,7 @@ CycleStats WeatheringSimulation::step() {
   const GridLayout& g = rock.layout;
   const SimParams& preset = st.preset;
 
-  // Directability (SPEC §2.4): a keyframe whose time has come replaces the
-  // graph for all rock still standing; integrities are kept.
-  const auto& keyframes = preset.durability.keyframes;
-  const double start_time = st.cycle * g.h;
-  while (st.next_keyframe < keyframes.size() && keyframes[st.next_keyframe].at <= start_time + 1e-9 * g.h) {
-    assignDurability(rock, DurabilityField(keyframes[st.next_keyframe].graph, preset.seed, st.next_keyframe + 1));
-    ++st.next_keyframe;
-  }
+  st.reachKeyframes(st.cycle * g.h, true);
 
   using Clock = std::chrono::steady_clock;
   const auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -267,8 +368,8 @@ CycleStats WeatheringSimulation::step() {
                         const std::size_t row = c0 / nx;
                         for (int k = 0; k < n; ++k) {
                           const int x = p.x + dx[k];
-                          const double w = graph.spheroidal[band] * applyResponse(preset.response, s[k]) +
-                                           graph.cavernous[band] * applyResponse(preset.response, 1.0 - s[k]);
+                          const double w = graph.spheroidal[band] * applyResponse(st.response, s[k]) +
+                                           graph.cavernous[band] * applyResponse(st.response, 1.0 - s[k]);
                           float& slot = rock.integrity.slot(row, x);
                           const float integrity = float(double(slot) - w / double(rock.durability.at(row, x)));
                           slot = integrity;
@@ -372,9 +473,9 @@ WeatheringResult weatherRock(VoxelRock rock, const SimParams& preset, const Cycl
 std::vector<float> exposureField(const VoxelRock& rock, const SimParams& preset) {
   const GridLayout& g = rock.layout;
   int reach = 1;
-  const std::vector<BubbleEstimator> estimators = buildEstimators(preset, g.h, reach);
+  const std::vector<BubbleEstimator> estimators = buildEstimators(preset.bubbles, g.h, reach);
   const AirField field(rock, reach);
-  const BubbleGraph graph = bindBubbleGraph(preset, g, field, estimators);
+  const BubbleGraph graph = bindBubbleGraph(preset.bubbles, g, field, estimators);
   std::vector<float> s(g.cellCount(), 0.f);
   tbb::parallel_for(0, g.nz, [&](int z) {
     const BoundEstimator& estimator = graph.estimators[std::size_t(graph.band_of_layer[std::size_t(z)])];

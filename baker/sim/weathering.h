@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -44,6 +45,23 @@ struct WeatheringResult {
   std::vector<CycleStats> cycles;
 };
 
+// The whole state of a simulation between two cycles: what a checkpoint
+// holds. A WeatheringSimulation made from it with the same SimParams runs on
+// exactly as the one it was taken from (the keyframes reached are replayed
+// from the parameters; their durability is already in the rock).
+struct SimulationSnapshot {
+  VoxelRock rock;                               // materials, integrity, durability
+  std::vector<std::int64_t> colluvium_columns;  // colluvium accumulators, per (x, y) column
+  int cycle = 0;                                // cycles run
+  std::size_t initial_rock = 0;                 // rock voxels before the first cycle (for `until`)
+};
+
+struct SimulationCounts {
+  std::size_t rock = 0;       // rock voxels
+  std::size_t exposed = 0;    // rock voxels with a face on air (what the next cycle weathers)
+  std::size_t colluvium = 0;  // colluvium voxels
+};
+
 // Number of cycles a preset asks for at voxel size h: cycles, or ceil(time / h).
 int plannedCycles(const SimParams& preset, double h);
 
@@ -52,6 +70,8 @@ int plannedCycles(const SimParams& preset, double h);
 class WeatheringSimulation {
  public:
   WeatheringSimulation(VoxelRock rock, SimParams params);
+  // Resumes a snapshot. Throws std::invalid_argument if it does not fit the parameters' grid.
+  WeatheringSimulation(SimulationSnapshot snapshot, SimParams params);
   ~WeatheringSimulation();
   WeatheringSimulation(const WeatheringSimulation&) = delete;
   WeatheringSimulation& operator=(const WeatheringSimulation&) = delete;
@@ -61,6 +81,18 @@ class WeatheringSimulation {
   const VoxelRock& rock() const;
   double pendingColluvium() const;  // fractional units waiting in the accumulators
   VoxelRock release();              // the rock; the simulation is spent
+
+  int cycle() const;  // cycles run so far
+  SimulationCounts counts() const;
+  SimulationSnapshot snapshot() const;
+  const SimParams& params() const;
+  // The parameters in effect now: the bubble graph and response of the
+  // latest keyframe reached (for attributes computed from the current state).
+  SimParams activeParams() const;
+  // Replaces the keyframes (directability while running, SPEC §7). Keyframes
+  // the simulation has already reached must stay as they are, at the same
+  // index: throws std::invalid_argument otherwise.
+  void setKeyframes(std::vector<DurabilityKeyframe> keyframes);
 
  private:
   struct State;

@@ -1,0 +1,282 @@
+#include "pipeline/checkpoint.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/sha256.h"
+#include "pipeline/manifest.h"
+#include "preset/preset_json.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;  // the header keeps its keys in order
+
+constexpr char kMagic[8] = {'R', 'B', 'K', 'P', 'O', 'I', 'N', 'T'};
+constexpr std::size_t kDigest = 64;
+
+template <typename T>
+void put(std::string& out, const T& value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
+}
+
+template <typename T>
+void putArray(std::string& out, const std::vector<T>& values) {
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// Row spans (core/voxel_rock.h) as they are: fill, then per row its first x,
+// its length and its values, so a restored simulation holds the same spans.
+void putSpans(std::string& out, const RowSpans& spans) {
+  put(out, spans.fill);
+  for (std::size_t row = 0; row < spans.values.size(); ++row) {
+    put(out, spans.first[row]);
+    put(out, std::uint32_t(spans.values[row].size()));
+    putArray(out, spans.values[row]);
+  }
+}
+
+// Reads the body after the magic, refusing to go past its end.
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t end, const fs::path& file) : bytes_(bytes), end_(end), file_(file) {}
+  template <typename T>
+  T get() {
+    T value;
+    need(sizeof(T));
+    std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return value;
+  }
+  template <typename T>
+  std::vector<T> getArray(std::uint64_t count) {
+    if (count > (end_ - at_) / sizeof(T)) truncated();
+    std::vector<T> values(count);
+    std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));
+    at_ += count * sizeof(T);
+    return values;
+  }
+  RowSpans getSpans(const GridLayout& g) {
+    RowSpans spans(g, get<float>());
+    for (std::size_t row = 0; row < spans.values.size(); ++row) {
+      spans.first[row] = get<std::int32_t>();
+      const auto count = get<std::uint32_t>();
+      if (count > std::uint32_t(g.nx) || spans.first[row] < 0 || spans.first[row] + std::int64_t(count) > g.nx)
+        truncated();
+      spans.values[row] = getArray<float>(count);
+    }
+    return spans;
+  }
+  std::string getString(std::uint64_t size) {
+    need(size);
+    std::string s = bytes_.substr(at_, size);
+    at_ += size;
+    return s;
+  }
+  std::size_t at() const { return at_; }
+  [[noreturn]] void truncated() const {
+    throw InputError({file_.string()}, "", "the checkpoint is truncated or corrupt (its sections run past its end)",
+                     "use another checkpoint, or bake again");
+  }
+
+ private:
+  void need(std::uint64_t size) {
+    if (size > end_ - at_) truncated();
+  }
+  const std::string& bytes_;
+  std::size_t end_;
+  std::size_t at_ = sizeof(kMagic);
+  const fs::path& file_;
+};
+
+}  // namespace
+
+std::string checkpointFileName(double time) {
+  return fmt::format("{:.6g}.rbk", time);
+}
+
+void writeCheckpoint(const fs::path& file, const Checkpoint& c) {
+  const VoxelRock& rock = c.snapshot.rock;
+  const GridLayout& g = rock.layout;
+  const json header = {{"layout",
+                        {{"nx", g.nx},
+                         {"ny", g.ny},
+                         {"nz", g.nz},
+                         {"margin", g.margin},
+                         {"h", g.h},
+                         {"origin", g.origin},
+                         {"domain_height", g.domain_height},
+                         {"ground", g.ground}}},
+                       {"cycle", c.snapshot.cycle},
+                       {"time", c.snapshot.cycle * g.h},
+                       {"initial_rock", c.snapshot.initial_rock},
+                       {"preset_file", c.preset_file.string()},
+                       {"preset_text", c.preset_text},
+                       {"overrides",
+                        {{"sets", c.overrides.sets},
+                         {"set_origins", c.overrides.set_origins},
+                         {"seed", c.overrides.seed ? json(*c.overrides.seed) : json(nullptr)},
+                         {"resolution", c.overrides.resolution ? json(*c.overrides.resolution) : json(nullptr)}}},
+                       {"preset", json::parse(c.preset.dump())},
+                       {"preset_hash", c.preset_hash},
+                       {"cycles", c.cycles}};
+  std::string out(kMagic, sizeof(kMagic));
+  put(out, kCheckpointVersion);
+  const std::string header_text = header.dump();
+  put(out, std::uint64_t(header_text.size()));
+  out += header_text;
+  put(out, std::uint64_t(g.cellCount()));
+  static_assert(sizeof(Material) == 1);
+  putArray(out, rock.material);
+  putSpans(out, rock.integrity);
+  putSpans(out, rock.durability);
+  put(out, std::uint64_t(rock.rind.size()));  // 0 without a rind, else one byte per cell
+  putArray(out, rock.rind);
+  put(out, std::uint64_t(c.snapshot.colluvium_columns.size()));
+  putArray(out, c.snapshot.colluvium_columns);
+  out += sha256Hex(out);
+  writeFileAtomically(file, out);
+}
+
+Checkpoint readCheckpoint(const fs::path& file) {
+  const auto bad = [&](const std::string& problem, const std::string& hint) {
+    throw InputError({file.string()}, "", problem, hint);
+  };
+  std::ifstream in(file, std::ios::binary);
+  if (!in) bad("cannot be read", "check the path (checkpoints are OUT/<name>/checkpoints/<time>.rbk)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string bytes = buffer.str();
+  if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+    bad("not a rockbake checkpoint", "give a .rbk file written by `rockbake bake --checkpoint-every`");
+  if (bytes.size() < sizeof(kMagic) + 4 + kDigest)
+    bad("the checkpoint is truncated (" + std::to_string(bytes.size()) + " bytes)",
+        "use another checkpoint, or bake again");
+  Reader reader(bytes, bytes.size() - kDigest, file);
+  const auto version = reader.get<std::uint32_t>();
+  if (version != kCheckpointVersion)
+    bad("checkpoint format version " + std::to_string(version) + "; this rockbake reads version " +
+            std::to_string(kCheckpointVersion),
+        "resume it with the rockbake that wrote it, or bake again");
+  if (sha256Hex(std::string_view(bytes).substr(0, bytes.size() - kDigest)) != bytes.substr(bytes.size() - kDigest))
+    bad("the checkpoint is truncated or corrupt (its checksum does not match)",
+        "use another checkpoint, or bake again");
+
+  json header;
+  try {
+    header = json::parse(reader.getString(reader.get<std::uint64_t>()));
+    Checkpoint c;
+    GridLayout& g = c.snapshot.rock.layout;
+    const json& l = header.at("layout");
+    g.nx = l.at("nx"), g.ny = l.at("ny"), g.nz = l.at("nz"), g.margin = l.at("margin");
+    g.h = l.at("h"), g.origin = l.at("origin"), g.domain_height = l.at("domain_height"), g.ground = l.at("ground");
+    c.snapshot.cycle = header.at("cycle");
+    c.snapshot.initial_rock = header.at("initial_rock");
+    c.preset_file = header.at("preset_file").get<std::string>();
+    c.preset_text = header.at("preset_text");
+    const json& o = header.at("overrides");
+    c.overrides.sets = o.at("sets").get<std::vector<std::string>>();
+    c.overrides.set_origins = o.at("set_origins").get<std::vector<std::string>>();
+    if (!o.at("seed").is_null()) c.overrides.seed = o.at("seed").get<std::uint64_t>();
+    if (!o.at("resolution").is_null()) c.overrides.resolution = o.at("resolution").get<int>();
+    c.preset = nlohmann::json::parse(header.at("preset").dump());
+    c.preset_hash = header.at("preset_hash");
+    c.cycles = header.at("cycles");
+    const auto cells = reader.get<std::uint64_t>();
+    if (cells != g.cellCount()) reader.truncated();
+    c.snapshot.rock.material = reader.getArray<Material>(cells);
+    c.snapshot.rock.integrity = reader.getSpans(g);
+    c.snapshot.rock.durability = reader.getSpans(g);
+    const auto rind_cells = reader.get<std::uint64_t>();
+    if (rind_cells != 0 && rind_cells != cells) reader.truncated();
+    c.snapshot.rock.rind = reader.getArray<std::uint8_t>(rind_cells);
+    c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(reader.get<std::uint64_t>());
+    if (reader.at() != bytes.size() - kDigest) reader.truncated();
+    for (Material m : c.snapshot.rock.material)
+      if (m != Material::Air && m != Material::Rock && m != Material::Colluvium) reader.truncated();
+    return c;
+  } catch (const json::exception& e) {
+    bad(std::string("the checkpoint's header is unreadable: ") + e.what(), "use another checkpoint, or bake again");
+  }
+  return {};
+}
+
+ResumePlan planResume(const Checkpoint& c, const std::vector<std::string>& sets) {
+  static const std::vector<std::string> kKeyframed = {"durability.points", "durability.noise", "bubbles", "response"};
+  static const std::vector<std::string> kDirect = {"colluvium", "rockfall", "time", "cycles", "until"};
+  const auto under = [](const std::string& path, const std::string& prefix) {
+    return path == prefix || path.rfind(prefix + ".", 0) == 0;
+  };
+  std::vector<std::string> keyframed, direct;
+  for (const auto& set : sets) {
+    const std::string path = set.substr(0, set.find('='));
+    const auto matches = [&](const std::vector<std::string>& prefixes) {
+      return std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return under(path, p); });
+    };
+    if (matches(kKeyframed))
+      keyframed.push_back(set);
+    else if (matches(kDirect))
+      direct.push_back(set);
+    else
+      throw InputError({"--set " + set}, path,
+                       "a resumed bake cannot change '" + path + "': the checkpoint's state was made with it",
+                       "resume may change durability.points, durability.noise, bubbles, response, colluvium, "
+                       "rockfall, time, cycles and until; bake from the start to change the rest");
+  }
+
+  const Preset original = parsePreset(c.preset_text, c.preset_file, c.overrides);
+  if (presetFingerprint(original, {}) != c.preset_hash)
+    throw InputError({c.preset_file.string()}, "",
+                     "the preset reads differently now than when the checkpoint was written (a file it extends or "
+                     "a shape changed?)",
+                     "restore it, or bake from the start");
+  PresetOverrides edited_overrides = c.overrides;
+  for (const auto& set : sets) edited_overrides.sets.push_back(set), edited_overrides.set_origins.push_back("");
+  edited_overrides.set_origins.resize(edited_overrides.sets.size());
+  const Preset edited = parsePreset(c.preset_text, c.preset_file, edited_overrides);  // validates the edits
+
+  // Changes to the graph, bubbles and response become a keyframe at the checkpoint's time.
+  const double h = c.snapshot.rock.layout.h;
+  const double t = c.snapshot.cycle * h;
+  std::vector<DurabilityKeyframe> keyframes = original.durability.keyframes;
+  DurabilityKeyframe k;
+  k.at = t;
+  const nlohmann::json before = presetToJson(original), after = presetToJson(edited);
+  if (before["durability"]["points"] != after["durability"]["points"] ||
+      before["durability"]["noise"] != after["durability"]["noise"])
+    k.graph = edited.durability.graph;
+  if (before["bubbles"] != after["bubbles"]) k.bubbles = edited.bubbles;
+  if (before["response"] != after["response"]) k.response = edited.response;
+
+  ResumePlan plan;
+  plan.overrides = c.overrides;
+  plan.overrides.set_origins.resize(plan.overrides.sets.size());
+  for (const auto& set : direct) plan.overrides.sets.push_back(set), plan.overrides.set_origins.push_back("");
+  if (k.graph || k.bubbles || k.response) {
+    auto at = std::find_if(keyframes.begin(), keyframes.end(), [&](const DurabilityKeyframe& e) { return e.at >= t; });
+    if (at != keyframes.end() && at->at == t) {  // one already at that time: the edit merges into it
+      if (k.graph) at->graph = k.graph;
+      if (k.bubbles) at->bubbles = k.bubbles;
+      if (k.response) at->response = k.response;
+    } else {
+      keyframes.insert(at, k);
+    }
+    Preset with = original;
+    with.durability.keyframes = keyframes;
+    plan.overrides.sets.push_back("durability.keyframes=" + presetToJson(with)["durability"]["keyframes"].dump());
+    plan.overrides.set_origins.push_back("");
+  }
+  plan.preset = parsePreset(c.preset_text, c.preset_file, plan.overrides);
+  return plan;
+}
+
+}  // namespace rockbake

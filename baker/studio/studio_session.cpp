@@ -1,0 +1,442 @@
+#include "studio/studio_session.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "export/vdb_file.h"
+#include "mesh/bake_attributes.h"
+#include "mesh/extract_surfaces.h"
+#include "pipeline/manifest.h"
+#include "pipeline/read_inputs.h"
+#include "preset/load_preset.h"
+#include "preset/preset_json.h"
+#include "sim/grid_layout.h"
+#include "sim/shapes.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Past the preset's end the studio may run this many more cycles (run_until, seek).
+constexpr int kMaxExtraCycles = 10000;
+// In-memory checkpoints on the timeline: about this many over the preset's time.
+constexpr int kCheckpointsPerRun = 16;
+
+std::string readText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError({file.string()}, "", "cannot be read", "check the path and its permissions");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The keyframe parts a studio edit touches.
+struct Parts {
+  std::optional<DurabilityGraph> graph;
+  std::optional<std::vector<BubbleBand>> bubbles;
+  std::optional<ResponseParams> response;
+};
+
+// A JSON value as a YAML node. Numbers are written in their shortest exact
+// form, so a saved keyframe time reads back as the same double.
+YAML::Node toYaml(const json& j) {
+  switch (j.type()) {
+    case json::value_t::object: {
+      YAML::Node map(YAML::NodeType::Map);
+      for (const auto& [key, value] : j.items()) map[key] = toYaml(value);
+      return map;
+    }
+    case json::value_t::array: {
+      YAML::Node list(YAML::NodeType::Sequence);
+      bool numbers = true;
+      for (const auto& value : j) {
+        list.push_back(toYaml(value));
+        numbers = numbers && (value.is_number() || (value.is_array() && value.size() <= 3));
+      }
+      if (numbers) list.SetStyle(YAML::EmitterStyle::Flow);
+      return list;
+    }
+    case json::value_t::number_float:
+      return YAML::Node(fmt::format("{}", j.get<double>()));
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+      return YAML::Node(j.dump());
+    case json::value_t::boolean:
+      return YAML::Node(j.get<bool>() ? "true" : "false");
+    case json::value_t::string:
+      return YAML::Node(j.get<std::string>());
+    default:
+      return YAML::Node(YAML::NodeType::Null);
+  }
+}
+
+// durability {points, noise}, bubbles and response of a preset, in its JSON (= YAML) form.
+json graphJson(const Preset& p, const DurabilityGraph& graph) {
+  Preset copy = p;
+  copy.durability.graph = graph;
+  copy.durability.keyframes.clear();
+  json d = presetToJson(copy)["durability"];
+  json out = {{"points", d["points"]}};
+  if (!graph.noise.empty()) out["noise"] = d["noise"];
+  return out;
+}
+
+bool sameTime(double a, double b, double h) {
+  return std::abs(a - b) <= 1e-9 * h;
+}
+
+void appendU32(std::string& out, std::uint32_t v) {
+  char bytes[4];
+  std::memcpy(bytes, &v, 4);  // little-endian machines only, as the page reads it
+  out.append(bytes, 4);
+}
+
+void appendMesh(std::string& out, const SurfaceMesh& m) {
+  std::vector<std::array<std::uint32_t, 3>> triangles = m.triangles;
+  for (const auto& q : m.quads) {
+    triangles.push_back({q[0], q[1], q[2]});
+    triangles.push_back({q[0], q[2], q[3]});
+  }
+  appendU32(out, std::uint32_t(m.positions.size()));
+  appendU32(out, std::uint32_t(triangles.size()));
+  out.append(reinterpret_cast<const char*>(m.positions.data()), m.positions.size() * sizeof(m.positions[0]));
+  std::vector<std::array<float, 3>> colours = m.colors;
+  colours.resize(m.positions.size(), {0.6f, 0.6f, 0.6f});
+  out.append(reinterpret_cast<const char*>(colours.data()), colours.size() * sizeof(colours[0]));
+  out.append(reinterpret_cast<const char*>(triangles.data()), triangles.size() * sizeof(triangles[0]));
+}
+
+}  // namespace
+
+StudioSession::StudioSession(const fs::path& preset_file, int resolution)
+    : file_(preset_file), original_text_(readText(preset_file)), resolution_(resolution) {
+  own_resolution_ = loadPreset(file_).grid.resolution;
+  preset_ = parsePreset(original_text_, file_, {{}, std::nullopt, resolution_});
+  shape_ = readInputs(preset_);
+  restart();
+}
+
+StudioSession::~StudioSession() = default;
+
+SimParams StudioSession::simParams() const {
+  SimParams params = preset_;
+  // The studio runs past the preset's end on request; it stops itself at end_cycle_.
+  params.stop.time.reset();
+  params.stop.cycles = end_cycle_ + kMaxExtraCycles;
+  return params;
+}
+
+void StudioSession::restart() {
+  VoxelRock initial = buildInitialRock(shape_, preset_);
+  initial_rock_ = initial.count(Material::Rock);
+  end_cycle_ = plannedCycles(preset_, initial.layout.h);
+  sim_ = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
+  checkpoints_.clear();
+  history_.clear();
+  keepCheckpoint();
+  ++rock_version_;
+}
+
+void StudioSession::keepCheckpoint() {
+  checkpoints_.insert_or_assign(sim_->cycle(), sim_->snapshot());
+}
+
+void StudioSession::restore(int cycle) {
+  sim_ = std::make_unique<WeatheringSimulation>(checkpoints_.at(cycle), simParams());
+  history_.resize(std::size_t(cycle));
+  ++rock_version_;
+}
+
+int StudioSession::cycle() const {
+  return sim_->cycle();
+}
+double StudioSession::h() const {
+  return sim_->rock().layout.h;
+}
+double StudioSession::time() const {
+  return sim_->cycle() * h();
+}
+bool StudioSession::finished() const {
+  return sim_->finished();
+}
+bool StudioSession::atEnd() const {
+  return cycle() >= end_cycle_ || finished();
+}
+
+CycleStats StudioSession::step() {
+  if (finished()) return {};
+  const CycleStats stats = sim_->step();
+  history_.push_back({stats.time, stats.rock, stats.exposed, stats.colluvium});
+  const int every = std::max(1, end_cycle_ / kCheckpointsPerRun);
+  if (stats.cycle % every == 0) keepCheckpoint();
+  ++rock_version_;
+  return stats;
+}
+
+void StudioSession::reset() {
+  restore(0);
+}
+
+int StudioSession::cycleAt(double t) const {
+  if (!std::isfinite(t) || t < 0) throw StudioError(400, "the time must be a number >= 0");
+  const double cycles = std::ceil(t / h() - 1e-9);
+  const int limit = end_cycle_ + kMaxExtraCycles;
+  if (cycles > limit)
+    throw StudioError(400, fmt::format("time {} is past what the studio runs ({} cycles of {:.4g}, time {:.4g})", t,
+                                       limit, h(), limit * h()));
+  return int(cycles);
+}
+
+void StudioSession::seek(double t) {
+  const int target = cycleAt(t);
+  // The latest checkpoint at or before the target; restore it when it is ahead of
+  // the simulation (a shortcut forward) or when the target lies behind it.
+  auto it = checkpoints_.upper_bound(target);
+  --it;  // cycle 0 is always there
+  if (target < cycle() || it->first > cycle()) restore(it->first);
+  while (cycle() < target && !finished()) step();
+}
+
+void StudioSession::runUntil(double t) {
+  seek(t);
+}
+
+void StudioSession::edit(const json& part) {
+  if (!part.is_object() || part.empty())
+    throw StudioError(400, "an edit is a JSON object with any of durability, bubbles and response");
+  PresetOverrides overrides;
+  overrides.resolution = resolution_;
+  const auto set = [&](const std::string& key, const json& value) {
+    overrides.sets.push_back(key + "=" + value.dump());
+    overrides.set_origins.push_back("POST /api/edit " + key);
+  };
+  for (const auto& [key, value] : part.items()) {
+    if (key == "durability") {
+      if (!value.is_object() || !value.contains("points"))
+        throw StudioError(400, "durability: expected {\"points\": [[altitude, durability], ...], \"noise\": [...]}");
+      for (const auto& [k, v] : value.items())
+        if (k != "points" && k != "noise")
+          throw StudioError(400, "durability." + k +
+                                     ": only the graph (points, noise) can be edited in the studio; edit the "
+                                     "preset file for the rest");
+      set("durability.points", value["points"]);
+      set("durability.noise",
+          value.value("noise", json::array()).is_null() ? json::array() : value.value("noise", json::array()));
+    } else if (key == "bubbles" || key == "response") {
+      set(key, value);
+    } else {
+      throw StudioError(400, "'" + key + "' cannot be edited in the studio: only durability, bubbles and response");
+    }
+  }
+  Preset parsed;
+  try {
+    parsed = parsePreset(original_text_, file_, overrides);
+  } catch (const InputError& e) {
+    throw StudioError(400, e.what());
+  }
+  Parts parts;
+  if (part.contains("durability")) parts.graph = parsed.durability.graph;
+  if (part.contains("bubbles")) parts.bubbles = parsed.bubbles;
+  if (part.contains("response")) parts.response = parsed.response;
+
+  const double t = time();
+  Preset candidate = preset_;
+  auto& keyframes = candidate.durability.keyframes;
+  if (cycle() == 0) {
+    // Time 0 edits the preset itself; every keyframe after it belonged to the old run.
+    if (parts.graph) candidate.durability.graph = *parts.graph;
+    if (parts.bubbles) candidate.bubbles = *parts.bubbles;
+    if (parts.response) candidate.response = *parts.response;
+    std::erase_if(keyframes, [&](const DurabilityKeyframe& k) { return !sameTime(k.at, 0.0, h()); });
+    for (auto& k : keyframes) {  // a keyframe at 0 would override the edit at once
+      if (parts.graph) k.graph.reset();
+      if (parts.bubbles) k.bubbles.reset();
+      if (parts.response) k.response.reset();
+    }
+    std::erase_if(keyframes, [](const DurabilityKeyframe& k) { return !k.graph && !k.bubbles && !k.response; });
+    preset_ = std::move(candidate);
+    restart();
+    return;
+  }
+  // Later: a keyframe at the current time (merged into one already there); the
+  // keyframes after it belonged to the branch left by seeking back.
+  std::erase_if(keyframes, [&](const DurabilityKeyframe& k) { return k.at > t && !sameTime(k.at, t, h()); });
+  if (keyframes.empty() || !sameTime(keyframes.back().at, t, h())) {
+    DurabilityKeyframe k;
+    k.at = t;
+    keyframes.push_back(k);
+  }
+  DurabilityKeyframe& k = keyframes.back();
+  k.at = t;
+  if (parts.graph) k.graph = *parts.graph;
+  if (parts.bubbles) k.bubbles = *parts.bubbles;
+  if (parts.response) k.response = *parts.response;
+  const GridLayout now = sim_->rock().layout, then = computeGridLayout(candidate);
+  if (then.margin != now.margin) {
+    const double largest = (now.margin - 1) * now.h;
+    throw StudioError(400, fmt::format("bubbles: a bubble that large needs an air margin of {} voxels and this grid "
+                                       "has {} (the largest radius allowed now is about {:.4g}); put the larger "
+                                       "bubble in the preset's bubbles and restart the studio",
+                                       then.margin, now.margin, largest));
+  }
+  preset_ = std::move(candidate);
+  sim_->setKeyframes(preset_.durability.keyframes);
+  std::erase_if(checkpoints_, [&](const auto& entry) { return entry.first > cycle(); });
+}
+
+json StudioSession::state() const {
+  const double t = time();
+  // What is in effect now: the base graph, then every keyframe reached (one at
+  // the current time included: the next cycle runs with it).
+  DurabilityGraph graph = preset_.durability.graph;
+  std::vector<BubbleBand> bubbles = preset_.bubbles;
+  ResponseParams response = preset_.response;
+  for (const auto& k : preset_.durability.keyframes) {
+    if (k.at > t && !sameTime(k.at, t, h())) break;
+    if (k.graph) graph = *k.graph;
+    if (k.bubbles) bubbles = *k.bubbles;
+    if (k.response) response = *k.response;
+  }
+  Preset active_preset = preset_;
+  active_preset.bubbles = bubbles;
+  active_preset.response = response;
+  const json active_json = presetToJson(active_preset);
+  json history = json::array();
+  for (const auto& e : history_) history.push_back({e.time, e.rock});
+  json checkpoints = json::array();
+  for (const auto& [c, snapshot] : checkpoints_) checkpoints.push_back(c * h());
+  const GridLayout& g = sim_->rock().layout;
+  const SimulationCounts counts = sim_->counts();
+  return {{"cycle", cycle()},
+          {"time", t},
+          {"h", h()},
+          {"end_time", end_cycle_ * h()},
+          {"planned_cycles", end_cycle_},
+          {"finished", finished() || cycle() >= end_cycle_ + kMaxExtraCycles},
+          {"at_end", atEnd()},
+          {"rock", counts.rock},
+          {"initial_rock", initial_rock_},
+          {"exposed", counts.exposed},
+          {"colluvium", counts.colluvium},
+          {"resolution", resolution_},
+          {"grid", {{"nx", g.nx}, {"ny", g.ny}, {"nz", g.nz}, {"h", g.h}, {"margin", g.margin}}},
+          {"history", history},
+          {"checkpoints", checkpoints},
+          {"mesh_version", rock_version_},
+          {"preset", presetToJson(preset_)},
+          {"active",
+           {{"durability", graphJson(preset_, graph)},
+            {"bubbles", active_json["bubbles"]},
+            {"response", active_json["response"]}}}};
+}
+
+std::string StudioSession::rockVdb() const {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rockbake-studio-{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path file = dir / "rock.vdb";
+  writeRockVdb(sim_->rock(), file);
+  std::string bytes = readText(file);
+  fs::remove(file);
+  return bytes;
+}
+
+std::string StudioSession::previewMesh(PreviewPalette palette) const {
+  const VoxelRock& rock = sim_->rock();
+  AssetMeshes meshes = extractSurfaces(rock, {preset_.mesh.smoothing});
+  // Curvature costs a bubble count per exposed voxel: only when it is shown.
+  const std::vector<float> exposure = palette == PreviewPalette::Curvature
+                                          ? exposureField(rock, sim_->activeParams())
+                                          : std::vector<float>(rock.layout.cellCount(), 0.5f);
+  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
+  PaletteParams params = paletteParams(rock, preset_.bake);
+  params.palette = palette == PreviewPalette::Natural      ? Palette::Natural
+                   : palette == PreviewPalette::Durability ? Palette::Debug
+                                                           : Palette::Curvature;
+  meshes = applyPalette(std::move(meshes), params);
+  std::string out = "RBPM";
+  appendU32(out, 1);
+  appendU32(out, std::uint32_t(cycle()));
+  appendMesh(out, meshes.rock);
+  appendMesh(out, meshes.colluvium);
+  return out;
+}
+
+std::string StudioSession::savedYaml(const std::string& name) const {
+  YAML::Node root = YAML::Load(original_text_);
+  const json resolved = presetToJson(preset_);
+  root["name"] = name;
+  if (!root["durability"].IsMap()) root["durability"] = YAML::Node(YAML::NodeType::Map);
+  YAML::Node durability = root["durability"];
+  const json graph = graphJson(preset_, preset_.durability.graph);
+  durability["points"] = toYaml(graph["points"]);
+  if (graph.contains("noise"))
+    durability["noise"] = toYaml(graph["noise"]);
+  else
+    durability.remove("noise");
+  durability["keyframes"] = toYaml(resolved["durability"]["keyframes"]);
+  root["bubbles"] = toYaml(resolved["bubbles"]);
+  root["response"] = toYaml(resolved["response"]);
+  root.remove("cycles");
+  root["time"] = YAML::Node(fmt::format("{}", time()));
+  YAML::Emitter out;
+  out << root;
+  return std::string("# Saved by rockbake studio at time ") + fmt::format("{}", time()) + " (resolution " +
+         std::to_string(resolution_) + ") from " + file_.filename().string() + "\n" + out.c_str() + "\n";
+}
+
+Preset StudioSession::finalPreset() const {
+  if (cycle() == 0) throw StudioError(409, "run at least one cycle first: the final bake bakes the current time");
+  return parsePreset(savedYaml(preset_.name), file_);
+}
+
+SaveResult StudioSession::save(const std::string& name, bool overwrite) {
+  static const std::regex kName("[a-z0-9_-]{1,64}");
+  if (!std::regex_match(name, kName))
+    throw StudioError(400, "name: '" + name + "' is not an asset name: use 1 to 64 of a-z, 0-9, _ and -");
+  if (cycle() == 0)
+    throw StudioError(409, "run at least one cycle before saving: a saved preset bakes at least one cycle");
+  const fs::path folder = file_.parent_path();
+  const fs::path target = folder / (name + ".yaml");
+  std::error_code ec;
+  for (const auto& source : preset_.sources)
+    if (fs::equivalent(source, target, ec))
+      throw StudioError(409, target.string() + " is the studio's preset or a file it extends; choose another name");
+  if (fs::exists(target) && !overwrite)
+    throw StudioError(409, target.string() + " exists; choose another name or save with overwrite");
+
+  // Validate before it is put in place: read back at the studio's resolution,
+  // it must be exactly the studio's preset (name and time aside).
+  const std::string text = savedYaml(name);
+  const fs::path scratch = folder / ("." + name + ".studio-check.yaml");
+  Preset expected = preset_;
+  expected.name = name;
+  expected.stop.time = time();
+  expected.stop.cycles.reset();
+  try {
+    writeFileAtomically(scratch, text);
+    const Preset reread = loadPreset(scratch, {{}, std::nullopt, resolution_});
+    fs::remove(scratch, ec);
+    if (presetToJson(reread) != presetToJson(expected))
+      throw StudioError(500, "the saved preset does not read back as the studio's; nothing was saved");
+  } catch (const InputError& e) {
+    fs::remove(scratch, ec);
+    throw StudioError(500, std::string("the saved preset does not validate (nothing was saved): ") + e.what());
+  }
+  writeFileAtomically(target, text);
+  return {target, time(), presetFingerprint(expected, {})};
+}
+
+}  // namespace rockbake

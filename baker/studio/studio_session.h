@@ -1,0 +1,111 @@
+// The studio's model (SPEC §7, docs/studio.md): one preset simulated at a
+// preview resolution, cycle by cycle, with edits that become keyframes, a
+// timeline of in-memory checkpoints, save, and the state the page shows. No
+// HTTP here (studio_server.h serves it); not thread-safe: the server calls
+// it under one lock.
+//
+// The contract: save() writes a preset that `rockbake bake --no-mesh
+// --resolution <resolution>` turns into a rock.vdb byte-identical to
+// rockVdb() at that moment. It holds because the studio's simulation is the
+// bake's WeatheringSimulation on the same SimParams, edits only ever change
+// keyframes the simulation has not reached yet (or the base graph at time 0,
+// which restarts it), and a restored checkpoint is the simulation's own
+// snapshot.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inputs/resolve_shape.h"
+#include "preset/preset.h"
+#include "sim/weathering.h"
+
+namespace rockbake {
+
+// A request the studio refuses (HTTP 4xx): `status` and a message that says what to do.
+class StudioError : public std::runtime_error {
+ public:
+  StudioError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  int status() const { return status_; }
+
+ private:
+  int status_;
+};
+
+enum class PreviewPalette { Natural, Durability, Curvature };
+
+struct SaveResult {
+  std::filesystem::path path;
+  double time = 0.0;
+  std::string preset_hash;
+};
+
+class StudioSession {
+ public:
+  // Reads the preset with grid.resolution = `resolution` (InputError on a bad preset).
+  StudioSession(const std::filesystem::path& preset_file, int resolution);
+  ~StudioSession();
+
+  CycleStats step();           // one cycle (a no-op at the simulation's hard end)
+  bool atEnd() const;          // the preset's time reached, or its `until`: where play stops
+  bool finished() const;       // nothing more can run (`until` reached)
+  void reset();                // back to time 0, keeping the edits
+  void runUntil(double time);  // forward, or seek back first; rounds up to a whole cycle
+  void seek(double time);      // restore the nearest checkpoint at or before, re-simulate to it
+
+  // A partial preset: any of durability {points, noise}, bubbles, response.
+  // Validated like a preset (StudioError 400 with the reader's message).
+  void edit(const nlohmann::json& part);
+
+  SaveResult save(const std::string& name, bool overwrite);
+  // The preset as Save would write it (keyframes, time = now), at its own resolution: what bake final bakes.
+  Preset finalPreset() const;
+  const ResolvedShape& shape() const { return shape_; }
+
+  nlohmann::json state() const;
+  std::string rockVdb() const;  // rock.vdb bytes, as `bake --no-mesh` writes them
+  // The preview mesh (docs/studio.md binary format), level 0 smoothed as mesh.smoothing says.
+  std::string previewMesh(PreviewPalette palette) const;
+
+  int cycle() const;
+  double time() const;
+  double h() const;
+  int resolution() const { return resolution_; }
+  std::uint64_t rockVersion() const { return rock_version_; }
+  const Preset& preset() const { return preset_; }
+
+ private:
+  void restart();  // a new simulation from the initial rock, checkpoints and history cleared
+  void restore(int cycle);
+  void keepCheckpoint();
+  SimParams simParams() const;
+  int cycleAt(double time) const;  // the whole cycle a time rounds up to
+  std::string savedYaml(const std::string& name) const;
+
+  std::filesystem::path file_;
+  std::string original_text_;
+  int resolution_;
+  int own_resolution_;
+  Preset preset_;  // at the studio's resolution, with every edit
+  ResolvedShape shape_;
+  std::unique_ptr<WeatheringSimulation> sim_;
+  std::map<int, SimulationSnapshot> checkpoints_;  // by cycle
+  struct HistoryEntry {
+    double time;
+    std::size_t rock, exposed, colluvium;
+  };
+  std::vector<HistoryEntry> history_;  // per cycle run on this branch
+  std::size_t initial_rock_ = 0;
+  int end_cycle_ = 1;               // the preset's time (or cycles) at the studio's voxel size
+  std::uint64_t rock_version_ = 0;  // changes whenever the rock does (the page refetches the mesh)
+};
+
+}  // namespace rockbake

@@ -1,0 +1,139 @@
+// Checkpoints and resume (SPEC §5), through the real executable: a resumed
+// bake equals the uninterrupted one byte for byte; an edit at the checkpoint
+// equals the same keyframe baked from the start; grid, shape, seed and
+// resolution cannot change; a truncated, corrupt or foreign file is a clear error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using test::readBytes;
+using test::runRockbake;
+using test::TempDir;
+
+// The small box preset for 1.5 units of time: 18 cycles of h = 2 / 24.
+fs::path writeSmall(const TempDir& dir) {
+  const fs::path file = dir.path() / "small.yaml";
+  test::writeText(file, std::string(test::kSmallPreset) + "colluvium: {yield: 0.8}\n");
+  return file;
+}
+
+const std::vector<std::string> kLong = {"--set", "time=1.5", "--no-render"};
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+TEST(Checkpoint, ResumedWithoutEditsEqualsTheUninterruptedBake) {
+  TempDir dir;
+  const fs::path preset = writeSmall(dir);
+  const auto straight = runRockbake(with({"bake", preset.string(), "-o", (dir.path() / "a").string()}, kLong));
+  ASSERT_EQ(straight.exit_status, 0) << straight.output;
+  const auto checkpointed = runRockbake(
+      with({"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.5"}, kLong));
+  ASSERT_EQ(checkpointed.exit_status, 0) << checkpointed.output;
+  const fs::path checkpoints = dir.path() / "b" / "small" / "checkpoints";
+  ASSERT_TRUE(fs::exists(checkpoints / "0.5.rbk")) << checkpointed.output;
+  ASSERT_TRUE(fs::exists(checkpoints / "1.rbk"));
+  EXPECT_FALSE(fs::exists(checkpoints / "1.5.rbk")) << "no checkpoint of the finished state";
+
+  const auto resumed =
+      runRockbake({"resume", (checkpoints / "0.5.rbk").string(), "-o", (dir.path() / "c").string(), "--no-render"});
+  ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
+  for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "rock.obj"}) {
+    const std::string a = readBytes(dir.path() / "a" / "small" / file);
+    EXPECT_FALSE(a.empty()) << file;
+    EXPECT_EQ(a, readBytes(dir.path() / "b" / "small" / file)) << file << ": checkpointing changed the bake";
+    EXPECT_EQ(a, readBytes(dir.path() / "c" / "small" / file)) << file << ": the resumed bake differs";
+  }
+}
+
+TEST(Checkpoint, AnEditAtTheCheckpointEqualsTheSameKeyframeFromTheStart) {
+  TempDir dir;
+  const fs::path preset = writeSmall(dir);
+  ASSERT_EQ(runRockbake(with({"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.5",
+                              "--no-mesh"},
+                             {"--set", "time=1.5"}))
+                .exit_status,
+            0);
+  const std::string points = "[[0, 0.3], [0.5, 2.0], [1, 0.5]]";
+  const auto resumed = runRockbake({"resume", (dir.path() / "b" / "small" / "checkpoints" / "0.5.rbk").string(), "-o",
+                                    (dir.path() / "c").string(), "--no-mesh", "--set", "durability.points=" + points,
+                                    "--set", "response={power: 2.0}"});
+  ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
+  // The checkpoint's time is cycle 6 at h = 2 / 24, exactly as the simulation computes it.
+  const std::string at = fmt::format("{}", 6 * (2.0 / 24));
+  const auto from_start =
+      runRockbake({"bake", preset.string(), "-o", (dir.path() / "d").string(), "--no-mesh", "--set", "time=1.5",
+                   "--set", "durability.keyframes=[{at: " + at + ", points: " + points + ", response: {power: 2.0}}]"});
+  ASSERT_EQ(from_start.exit_status, 0) << from_start.output;
+  const std::string resumed_vdb = readBytes(dir.path() / "c" / "small" / "rock.vdb");
+  EXPECT_EQ(resumed_vdb, readBytes(dir.path() / "d" / "small" / "rock.vdb"));
+  EXPECT_NE(resumed_vdb, readBytes(dir.path() / "b" / "small" / "rock.vdb")) << "the edit changed nothing";
+  // The resumed asset's manifest records a preset that reproduces it.
+  const std::string manifest = readBytes(dir.path() / "c" / "small" / "manifest.json");
+  EXPECT_NE(manifest.find("durability.keyframes="), std::string::npos) << manifest;
+}
+
+TEST(Checkpoint, GridShapeSeedAndResolutionCannotChangeOnResume) {
+  TempDir dir;
+  const fs::path preset = writeSmall(dir);
+  ASSERT_EQ(runRockbake(
+                {"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25", "--no-mesh"})
+                .exit_status,
+            0);
+  const std::string checkpoint = (dir.path() / "b" / "small" / "checkpoints" / "0.25.rbk").string();
+  for (const std::string set : {"grid.resolution=32", "shape.box.size=[1, 1, 1]", "seed=9", "grid.size=[3, 3, 3]"}) {
+    const auto r = runRockbake({"resume", checkpoint, "-o", (dir.path() / "c").string(), "--set", set});
+    EXPECT_EQ(r.exit_status, 2) << set << "\n" << r.output;
+    EXPECT_NE(r.output.find("a resumed bake cannot change '" + set.substr(0, set.find('=')) + "'"), std::string::npos)
+        << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "c")) << "a refused resume wrote something";
+  // Allowed, but a value the preset reader refuses is still refused.
+  const auto bad = runRockbake({"resume", checkpoint, "-o", (dir.path() / "c").string(), "--set", "colluvium.yield=7"});
+  EXPECT_EQ(bad.exit_status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("colluvium.yield"), std::string::npos) << bad.output;
+}
+
+TEST(Checkpoint, TruncatedCorruptAndForeignFilesAreClearErrors) {
+  TempDir dir;
+  const fs::path preset = writeSmall(dir);
+  ASSERT_EQ(runRockbake(
+                {"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25", "--no-mesh"})
+                .exit_status,
+            0);
+  const std::string whole = readBytes(dir.path() / "b" / "small" / "checkpoints" / "0.25.rbk");
+  ASSERT_GT(whole.size(), 1000u);
+  const auto resumeOf = [&](const std::string& name, const std::string& bytes) {
+    test::writeText(dir.path() / name, bytes);
+    return runRockbake({"resume", (dir.path() / name).string(), "-o", (dir.path() / "c").string(), "--no-mesh"});
+  };
+  const auto truncated = resumeOf("truncated.rbk", whole.substr(0, whole.size() / 2));
+  EXPECT_EQ(truncated.exit_status, 2);
+  EXPECT_NE(truncated.output.find("truncated.rbk: the checkpoint is truncated or corrupt"), std::string::npos)
+      << truncated.output;
+  std::string flipped = whole;
+  flipped[whole.size() / 2] = char(flipped[whole.size() / 2] ^ 0x10);
+  const auto corrupt = resumeOf("corrupt.rbk", flipped);
+  EXPECT_EQ(corrupt.exit_status, 2);
+  EXPECT_NE(corrupt.output.find("checksum does not match"), std::string::npos) << corrupt.output;
+  const auto foreign = resumeOf("foreign.rbk", readBytes(preset));
+  EXPECT_EQ(foreign.exit_status, 2);
+  EXPECT_NE(foreign.output.find("not a rockbake checkpoint"), std::string::npos) << foreign.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "c" / "small")) << "a bad checkpoint left an asset folder";
+  // And the whole file still resumes.
+  EXPECT_EQ(resumeOf("whole.rbk", whole).exit_status, 0);
+}
+
+}  // namespace
+}  // namespace rockbake
