@@ -43,7 +43,10 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     normal[t] = cross(e0, e1);
     const double longest = std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
     // |cross| is twice the area; zero area relative to the triangle's own size.
-    if (std::sqrt(dot(normal[t], normal[t])) <= 2e-6 * longest) ++d.zero_area;
+    if (std::sqrt(dot(normal[t], normal[t])) <= 2e-6 * longest) {
+      ++d.zero_area;
+      d.defect_vertices.insert(d.defect_vertices.end(), tri.begin(), tri.end());
+    }
   }
   // Directed edges sorted by undirected key: the faces on each edge side by side.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;  // (key, triangle << 2 | forward)
@@ -62,6 +65,8 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     for (; j < edges.size() && edges[j].first == edges[i].first; ++j) (edges[j].second & 1 ? forward : backward)++;
     if (forward != 1 || backward != 1) {
       ++d.open_edges;
+      d.defect_vertices.push_back(std::uint32_t(edges[i].first >> 32));
+      d.defect_vertices.push_back(std::uint32_t(edges[i].first & 0xffffffffu));
     } else {
       const std::uint32_t a = edges[i].second >> 2, b = edges[i + 1].second >> 2;
       neighbours[a][filled[a]++ % 3] = b, neighbours[b][filled[b]++ % 3] = a;
@@ -73,7 +78,10 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     bool against_all = true;
     for (std::uint32_t u : neighbours[t]) against_all &= dot(normal[t], normal[u]) < 0;
     d.fold_overs += against_all;
+    if (against_all) d.defect_vertices.insert(d.defect_vertices.end(), m.triangles[t].begin(), m.triangles[t].end());
   }
+  std::sort(d.defect_vertices.begin(), d.defect_vertices.end());
+  d.defect_vertices.erase(std::unique(d.defect_vertices.begin(), d.defect_vertices.end()), d.defect_vertices.end());
   // Components through shared vertices (union-find).
   std::vector<std::uint32_t> parent(m.positions.size());
   std::iota(parent.begin(), parent.end(), 0u);

@@ -48,6 +48,9 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
   matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
   r.rock_sdf = offsetField(r.rock_sdf, delta, g.ground);
+  // The shift along vertex normals and the field's shift agree only where its
+  // gradient has unit length: settle the vertices on the field rock.vdb keeps.
+  projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
   r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
