@@ -65,8 +65,8 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     for (; j < edges.size() && edges[j].first == edges[i].first; ++j) (edges[j].second & 1 ? forward : backward)++;
     if (forward != 1 || backward != 1) {
       ++d.open_edges;
-      d.defect_vertices.push_back(std::uint32_t(edges[i].first >> 32));
-      d.defect_vertices.push_back(std::uint32_t(edges[i].first & 0xffffffffu));
+      d.open_edge_vertices.push_back(std::uint32_t(edges[i].first >> 32));
+      d.open_edge_vertices.push_back(std::uint32_t(edges[i].first & 0xffffffffu));
     } else {
       const std::uint32_t a = edges[i].second >> 2, b = edges[i + 1].second >> 2;
       neighbours[a][filled[a]++ % 3] = b, neighbours[b][filled[b]++ % 3] = a;
@@ -80,8 +80,13 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     d.fold_overs += against_all;
     if (against_all) d.defect_vertices.insert(d.defect_vertices.end(), m.triangles[t].begin(), m.triangles[t].end());
   }
-  std::sort(d.defect_vertices.begin(), d.defect_vertices.end());
-  d.defect_vertices.erase(std::unique(d.defect_vertices.begin(), d.defect_vertices.end()), d.defect_vertices.end());
+  const auto sortUnique = [](std::vector<std::uint32_t>& v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  };
+  sortUnique(d.open_edge_vertices);
+  d.defect_vertices.insert(d.defect_vertices.end(), d.open_edge_vertices.begin(), d.open_edge_vertices.end());
+  sortUnique(d.defect_vertices);
   // Components through shared vertices (union-find).
   std::vector<std::uint32_t> parent(m.positions.size());
   std::iota(parent.begin(), parent.end(), 0u);

@@ -17,8 +17,9 @@ struct MeshDefects {
   std::size_t components = 0;  // connected pieces (through shared vertices)
   std::size_t shells = 0;      // of those, the ones enclosing positive volume (not cavities)
   double volume = 0;           // signed, positive when outward
-  // The vertices of every open edge, fold-over and zero-area triangle, sorted, once each.
-  std::vector<std::uint32_t> defect_vertices;
+  // The vertices of every open edge, fold-over and zero-area triangle, sorted, once each;
+  // and of the open edges alone.
+  std::vector<std::uint32_t> defect_vertices, open_edge_vertices;
   bool clean() const { return open_edges == 0 && fold_overs == 0 && zero_area == 0; }
 };
 

@@ -189,8 +189,10 @@ using Point = std::array<float, 3>;
 // as they are, then the simplifier's damage repaired as far as it can be.
 struct Pass {
   SurfaceMesh mesh;
-  std::size_t bad_edges = 0;   // edges not shared by exactly two faces after the repair
-  std::vector<Point> trouble;  // where the pass pinched, glued, tore or folded the surface
+  std::size_t bad_edges = 0;  // edges not shared by exactly two faces after the repair
+  std::vector<Point> torn;    // vertices of those edges
+  std::vector<Point> cut;     // pinches that cut the surface in two
+  std::vector<Point> folded;  // vertices of fold-overs and zero-area triangles the repair left
 };
 
 Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices, const std::vector<char>& locked,
@@ -215,8 +217,21 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
       "{} non-manifold edges",
       ratio, m.name, m.triangles.size(), result.size() / 3, kept.size() / 3, error, copies.size(), glued.size() / 3,
       pass.bad_edges);
-  for (unsigned int v : glued) pass.trouble.push_back(m.positions[v]);
-  for (unsigned int v : copies) pass.trouble.push_back(m.positions[v]);
+  // A pinch whose split leaves the copy and its vertex in different pieces cut
+  // the surface in two (a neck collapsed to a point); other pinches, and glued
+  // pairs, only change the genus or seal a slot thinner than the error.
+  if (!copies.empty()) {
+    std::vector<std::uint32_t> parent(m.positions.size() + copies.size());
+    for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+    const auto find = [&](std::uint32_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (std::size_t t = 0; t < result.size(); t += 3)
+      parent[find(result[t + 1])] = find(result[t]), parent[find(result[t + 2])] = find(result[t]);
+    for (std::size_t j = 0; j < copies.size(); ++j)
+      if (find(std::uint32_t(m.positions.size() + j)) != find(copies[j])) pass.cut.push_back(m.positions[copies[j]]);
+  }
   const auto source = [&](std::size_t i) {
     return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
   };
@@ -242,12 +257,16 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
   for (std::size_t t = 0; t < result.size(); t += 3)
     out.triangles.push_back({remap[result[t]], remap[result[t + 1]], remap[result[t + 2]]});
   // meshoptimizer 0.18 lets a collapse leave a triangle of zero area or one
-  // folded against its neighbours; flip and collapse those away.
+  // folded against its neighbours; flip and collapse those away (the repair
+  // needs every edge paired).
   if (pass.bad_edges == 0)
     repairFoldOvers(out);
   else
     computeVertexNormals(out);
-  for (std::uint32_t v : checkMesh(out).defect_vertices) pass.trouble.push_back(out.positions[v]);
+  const MeshDefects d = checkMesh(out);
+  for (std::uint32_t v : d.open_edge_vertices) pass.torn.push_back(out.positions[v]);
+  if (pass.bad_edges == 0)
+    for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(out.positions[v]);
   return pass;
 }
 
@@ -313,14 +332,7 @@ double meanEdgeLength(const SurfaceMesh& m) {
 // locked neighbourhood doubling each time. The cleanest pass is kept.
 SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, double ratio, double max_error = -1.0) {
   if (given.triangles.empty()) return given;
-  // Folds the input already has (projection onto the field can leave a few) are flipped away first.
-  SurfaceMesh repaired;
-  const MeshDefects given_defects = checkMesh(given);
-  if (given_defects.open_edges == 0 && !given_defects.defect_vertices.empty()) {
-    repaired = given;
-    repairFoldOvers(repaired);
-  }
-  const SurfaceMesh& m = repaired.triangles.empty() ? given : repaired;
+  const SurfaceMesh& m = given;
   const std::size_t index_count = 3 * m.triangles.size();
   const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
   std::vector<unsigned int> indices(index_count);
@@ -335,34 +347,43 @@ SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, dou
   for (std::uint32_t v : input.defect_vertices) inherited.push_back(m.positions[v]);
   std::sort(inherited.begin(), inherited.end());
 
-  // Error-bounded (LOD0): lock around the trouble and simplify the rest again.
+  // Error-bounded (LOD0): lock around every tear, cut and new fold and
+  // simplify the rest again, the locked neighbourhood doubling each pass.
   // Triangle budgets (further LODs): locking spends the budget, so first aim a
-  // little lower or higher (1 %, 2 % either way), and lock only where a torn
-  // edge is left after that. A torn edge outweighs any number of folds.
+  // little lower or higher (1 %, 2 % either way), and lock only around tears
+  // still left after that. A tear outweighs any number of cuts, a cut any
+  // number of folds.
   const bool budget = max_error < 0;
   constexpr int kPasses = 7;
   constexpr std::array<double, kPasses> kNudge{1.0, 0.99, 1.01, 0.98, 1.02, 1.0, 1.0};
   std::vector<char> locked(m.triangles.size(), 0);
   std::optional<Pass> best;
-  std::size_t best_trouble = std::numeric_limits<std::size_t>::max();
-  double radius = 4.0 * meanEdgeLength(m);
+  std::size_t best_score = std::numeric_limits<std::size_t>::max();
+  double radius = 2.0 * meanEdgeLength(m);
   for (int attempt = 0; attempt < kPasses; ++attempt) {
     const std::size_t pass_target =
         budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
                : target;
     Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, ratio);
-    std::vector<Point> trouble;
-    for (const Point& p : pass.trouble)
-      if (!std::binary_search(inherited.begin(), inherited.end(), p)) trouble.push_back(p);
-    const bool split = checkMesh(pass.mesh).components > input.components;
-    const std::size_t score = 1000 * pass.bad_edges + trouble.size() + (split ? 1 : 0);
-    if (score < best_trouble) best_trouble = score, best = std::move(pass);
-    if (score == 0) break;
-    if (!budget || (attempt >= 4 && best->bad_edges > 0)) {
-      if (trouble.empty()) break;  // nothing to lock around
-      lockAround(m, trouble, radius, locked);
-      radius *= 2.0;
+    std::vector<Point> folds;
+    for (const Point& p : pass.folded)
+      if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
+    const std::size_t score = 1000000 * pass.bad_edges + 1000 * pass.cut.size() + folds.size();
+    std::vector<Point> lock_around = pass.torn;
+    if (!budget) {
+      lock_around.insert(lock_around.end(), pass.cut.begin(), pass.cut.end());
+      lock_around.insert(lock_around.end(), folds.begin(), folds.end());
     }
+    const bool better = score < best_score;
+    if (better) best_score = score, best = std::move(pass);
+    if (score == 0) break;
+    if (budget && (attempt < 4 || best->bad_edges == 0)) continue;
+    if (lock_around.empty()) {
+      if (budget) continue;
+      break;  // nothing to lock around
+    }
+    lockAround(m, lock_around, radius, locked);
+    radius *= 2.0;
   }
   if (best->bad_edges > 0) {
     spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name,
