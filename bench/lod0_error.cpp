@@ -29,8 +29,17 @@ int main(int argc, char** argv) {
   const rockbake::TriangleMesh mesh = rockbake::readTriangleMesh(dir / "rock.ply");
   openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*sdf);
   std::vector<double> phi;
-  for (const auto& p : mesh.positions) phi.push_back(std::abs(sampler.wsSample(openvdb::Vec3R(p[0], p[1], p[2]))) / h);
+  std::vector<std::pair<double, std::size_t>> worst;
+  for (const auto& p : mesh.positions) {
+    phi.push_back(std::abs(sampler.wsSample(openvdb::Vec3R(p[0], p[1], p[2]))) / h);
+    worst.push_back({phi.back(), worst.size()});
+  }
   std::sort(phi.begin(), phi.end());
+  std::sort(worst.rbegin(), worst.rend());
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, worst.size()); ++i) {  // where to look first
+    const auto& p = mesh.positions[worst[i].second];
+    std::printf("far: %.3f voxels at (%.4f, %.4f, %.4f)\n", worst[i].first, p[0], p[1], p[2]);
+  }
   double mean = 0;
   for (double v : phi) mean += v / double(phi.size());
   std::printf("vertices %zu mean %.4f p99 %.4f max %.4f (voxels)\n", phi.size(), mean, phi[phi.size() * 99 / 100],

@@ -162,8 +162,11 @@ void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field_ptr, bool grou
       auto& p = mesh.positions[i];
       if (ground && p[2] == 0.0f) continue;
       openvdb::Vec3d q(p[0], p[1], p[2]);
-      for (int step = 0; step < 2; ++step) {
+      // Steps of at most half a voxel, until on the level set: Catmull-Clark
+      // can pull a sharp corner or a thin leg more than a voxel inside.
+      for (int step = 0; step < 6; ++step) {
         const double phi = sample.wsSample(q);
+        if (std::abs(phi) < 1e-3 * h) break;
         openvdb::Vec3d g;
         for (int a = 0; a < 3; ++a) {
           openvdb::Vec3d d(0.0);
