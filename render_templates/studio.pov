@@ -3,11 +3,39 @@
 #version 3.7;
 global_settings { assumed_gamma 1.0 max_trace_level 5 }
 
-#declare Rockbake_Finish = finish { ambient 0 diffuse 0.85 specular 0.05 roughness 0.05 }
-#include "{{MESH_INCLUDE}}"
-
 #declare Center = {{ASSET_CENTER}};
 #declare Radius = {{ASSET_RADIUS}};
+
+// The rock look (lengths follow the asset's size, patterns sampled at a seeded
+// offset): colour varied within each layer at two scales, a bump at two
+// scales (weathered wrinkles and sand grain), granular colluvium.
+#declare Rockbake_Offset = {{SEED_OFFSET}};
+#declare Rockbake_Finish = finish { ambient 0 diffuse 0.85 specular 0.03 roughness 0.08 }
+#declare Rockbake_Dark = 0.78;
+#declare Rockbake_Light = 1.12;
+#declare Rockbake_Rock_Grain = pigment {
+  average pigment_map {
+    [3 granite turbulence 0.3 scale 0.25 * Radius translate Rockbake_Offset
+       color_map { [0 rgb 0] [0.6 rgb 0.7] [1 rgb 1] }]
+    [1 granite scale 0.02 * Radius translate 2 * Rockbake_Offset color_map { [0 rgb 0] [1 rgb 1] }]
+  }
+}
+#declare Rockbake_Rock_Normal = normal {
+  average normal_map {
+    [2 wrinkles 0.9 scale 0.07 * Radius translate Rockbake_Offset]
+    [1 granite 0.5 scale 0.012 * Radius translate 3 * Rockbake_Offset]
+  }
+}
+#declare Rockbake_Colluvium_Grain = pigment {
+  granite scale 0.015 * Radius translate 5 * Rockbake_Offset color_map { [0 rgb 0] [1 rgb 1] }
+}
+#declare Rockbake_Colluvium_Normal = normal {
+  average normal_map {
+    [1 crackle 0.8 scale 0.008 * Radius translate 7 * Rockbake_Offset]
+    [1 granite 0.6 scale 0.004 * Radius translate 11 * Rockbake_Offset]
+  }
+}
+#include "{{MESH_INCLUDE}}"
 
 camera {
   perspective

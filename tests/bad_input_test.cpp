@@ -409,7 +409,7 @@ TEST(BadInput, RenderTemplateIsANameNeverAPath) {
   ASSERT_EQ(baked.exit_status, 0) << baked.output;
   const std::string manifest = readBytes(out / "small" / "manifest.json");
   writeText(dir.path() / "evil.pov", "#error \"read from outside\"\n");
-  for (const std::string bad : {(dir.path() / "evil").string(), std::string("../../x"), std::string("stuido")}) {
+  for (const std::string& bad : {(dir.path() / "evil").string(), std::string("../../x"), std::string("stuido")}) {
     const auto result = runRockbake({"render", (out / "small").string(), "--template", bad});
     EXPECT_EQ(result.exit_status, 2) << result.output;
     EXPECT_NE(result.output.find("--template: "), std::string::npos) << result.output;

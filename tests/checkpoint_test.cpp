@@ -49,7 +49,7 @@ TEST(Checkpoint, ResumedWithoutEditsEqualsTheUninterruptedBake) {
   const auto resumed =
       runRockbake({"resume", (checkpoints / "0.5.rbk").string(), "-o", (dir.path() / "c").string(), "--no-render"});
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
-  for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "rock.obj"}) {
+  for (const char* file : {"rock.vdb", "rock.ply", "rock.glb", "asset.json"}) {
     const std::string a = readBytes(dir.path() / "a" / "small" / file);
     EXPECT_FALSE(a.empty()) << file;
     EXPECT_EQ(a, readBytes(dir.path() / "b" / "small" / file)) << file << ": checkpointing changed the bake";

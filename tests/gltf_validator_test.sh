@@ -24,11 +24,13 @@ durability: {points: [[0.0, 1.0], [0.5, 0.4], [1.0, 1.5]]}
 bubbles: [{up_to: 1.0, bubble: {sphere: {radius: 0.25}}, spheroidal: 0.7, cavernous: 0.3}]
 colluvium: {yield: 0.6}
 time: 0.5
-mesh: {subdivision: 1, lods: [0.5, 0.25]}
+mesh: {subdivision: 1, lods: [0.5, 0.25], detail: {amplitude: 0.01, period: 0.1, octaves: 2}}
 export: [glb]
 YAML
 "$rockbake" bake "$work/asset.yaml" -o "$work/out" --no-render
-files=("$work"/out/glb-check/*.glb)
-[ "${#files[@]}" -eq 3 ] || { echo "FAIL: expected rock.glb and two LODs, found ${files[*]}" >&2; exit 1; }
+# The house chain: LODs as triangle counts.
+"$rockbake" bake "$work/asset.yaml" -o "$work/counts" --no-render --set name=glb-counts --set 'mesh.lods=[900, 300]'
+files=("$work"/out/glb-check/*.glb "$work"/counts/glb-counts/*.glb)
+[ "${#files[@]}" -eq 6 ] || { echo "FAIL: expected rock.glb and two LODs twice, found ${files[*]}" >&2; exit 1; }
 node "$validator" "${files[@]}"
 echo "PASS: ${#files[@]} files, no validator errors"

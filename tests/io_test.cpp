@@ -19,6 +19,7 @@
 #include "core/atomic_file.h"
 #include "core/png_image.h"
 #include "export/vdb_file.h"
+#include "mesh/extract_surfaces.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -316,11 +317,13 @@ TEST(RockVdb, LevelSetIsNegativeInsideAndPositiveOutside) {
   }
 }
 
-TEST(RockVdb, TransformMapsIndicesToVoxelCentres) {
+TEST(RockVdb, TransformMapsIndicesToVoxelCentresAroundThePivot) {
   TempDir dir;
   const VoxelRock rock = randomRock(21, 19, 13, 3);
   const fs::path file = dir.path() / "rock.vdb";
   writeRockVdb(rock, file);
+  // The asset's frame: the footprint's centre on the ground is the origin, as for the meshes.
+  const std::array<double, 3> pivot = footprintPivot(rock);
   for (const char* name : {"rock", "colluvium", "durability", "rock_sdf"}) {
     openvdb::initialize();
     openvdb::io::File vdb(file.string());
@@ -331,7 +334,7 @@ TEST(RockVdb, TransformMapsIndicesToVoxelCentres) {
     for (const auto& [i, j, k] : {std::array{0, 0, 0}, std::array{20, 18, 12}, std::array{3, 7, 11}}) {
       const openvdb::Vec3d world = grid->transform().indexToWorld(openvdb::Coord(i, j, k));
       const Vec3d centre = rock.layout.center(i, j, k);
-      for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(world[axis], centre[axis], 1e-12) << name;
+      for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(world[axis], centre[axis] - pivot[axis], 1e-12) << name;
     }
   }
 }

@@ -633,8 +633,8 @@ TEST(Manifest, BakeWritesItLastListingWhatItWrote) {
   const json manifest = readJson(out / "small" / kManifestFile);
   std::set<std::string> outputs;
   for (const auto& o : manifest["outputs"]) outputs.insert(o["path"].get<std::string>());
-  // export=[ply]: no rock.vdb either.
-  EXPECT_EQ(outputs, (std::set<std::string>{"colluvium.ply", "rock.ply", "stats.json"}));
+  // export=[ply]: no rock.vdb either; asset.json describes the meshes.
+  EXPECT_EQ(outputs, (std::set<std::string>{"asset.json", "colluvium.ply", "rock.ply", "stats.json"}));
   expectManifestsTrue(out);
   EXPECT_EQ(manifest["asset"], "small");
   EXPECT_EQ(manifest["inputs"]["seed"], 9);

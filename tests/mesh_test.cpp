@@ -494,7 +494,9 @@ TEST(MeshExport, ObjRoundTrip) {
     ASSERT_EQ(r.vertices.size(), s->positions.size());
     ASSERT_EQ(r.faces, s->triangles);
     for (std::size_t i = 0; i < r.vertices.size(); ++i) {
-      ASSERT_EQ(r.vertices[i].p, s->positions[i]);  // shortest round-trip formatting
+      // y up (x, z, -y), shortest round-trip formatting
+      const auto& q = s->positions[i];
+      ASSERT_EQ(r.vertices[i].p, (std::array<float, 3>{q[0], q[2], -q[1]}));
       for (int k = 0; k < 3; ++k) ASSERT_NEAR(r.vertices[i].rgb[k] * 1e-4f, linearToSrgb(s->colors[i][k]), 1e-4f);
     }
   }
@@ -524,7 +526,7 @@ TEST(MeshExport, GlbRoundTrip) {
   EXPECT_EQ(model.scenes[0].nodes.size(), 2u);
   for (const SurfaceMesh* s : {&m.rock, &m.colluvium}) {
     const auto node = std::find_if(model.nodes.begin(), model.nodes.end(),
-                                   [&](const tinygltf::Node& n) { return n.name == s->name; });
+                                   [&](const tinygltf::Node& n) { return n.name == s->name + "_lod0"; });
     ASSERT_NE(node, model.nodes.end()) << s->name;
     const tinygltf::Primitive& prim = model.meshes[std::size_t(node->mesh)].primitives.at(0);
     EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
@@ -611,8 +613,8 @@ TEST(MeshStage, BakeAssetWritesMeshesAndTimesTheStages) {
   options.render = false;
   bakeAsset(p, options);
   const auto asset = dir.path() / "banded";
-  for (const char* file : {"rock.vdb", "rock.ply", "colluvium.ply", "rock.obj", "rock.mtl", "rock.glb", "rock_lod1.glb",
-                           "rock_lod2.glb", "stats.json"})
+  for (const char* file : {"rock.vdb", "rock.ply", "colluvium.ply", "rock.glb", "rock_lod1.glb", "rock_lod2.glb",
+                           "asset.json", "stats.json"})
     EXPECT_TRUE(std::filesystem::exists(asset / file)) << file;
   const auto stats = nlohmann::json::parse(test::readBytes(asset / "stats.json"));
   for (const char* stage : {"mesh_extract", "mesh_subdivide", "mesh_attributes", "export"})

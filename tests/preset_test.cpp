@@ -439,7 +439,7 @@ TEST(Preset, ResolvedJsonHasEveryKeyWithDefaults) {
   EXPECT_EQ(j["bubbles"][0]["bubble"]["sphere"]["radius"], 6.0 / 16.0);
   EXPECT_EQ(j["response"]["power"], 1.0);
   EXPECT_TRUE(j["shape"]["center"].is_null());
-  EXPECT_EQ(j["export"], nlohmann::json::parse(R"(["ply", "obj", "glb", "vdb"])"));
+  EXPECT_EQ(j["export"], nlohmann::json::parse(R"(["ply", "glb", "vdb"])"));
   // Deterministic, and it loads back to itself.
   EXPECT_EQ(presetToJson(parsePreset(j.dump(), "p.yaml")).dump(), j.dump());
 }

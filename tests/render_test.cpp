@@ -350,7 +350,8 @@ TEST(RenderTest, MeshIncludeSharesTexturesBetweenVerticesOfOneColour) {
   ASSERT_TRUE(std::regex_search(text, m, std::regex(R"(texture_list \{ (\d+),)")));
   ASSERT_EQ(std::stoul(m[1]), 2u);
   std::vector<Color> textures;
-  const std::regex texture(R"(rgb <([0-9.e-]+), ([0-9.e-]+), ([0-9.e-]+)>)");
+  // Each texture names its colour twice (times Rockbake_Dark and Rockbake_Light): read the first.
+  const std::regex texture(R"(\[0 rgb <([0-9.e-]+), ([0-9.e-]+), ([0-9.e-]+)> \* Rockbake_Dark\])");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), texture); it != std::sregex_iterator(); ++it)
     textures.push_back({std::stof((*it)[1]), std::stof((*it)[2]), std::stof((*it)[3])});
   ASSERT_EQ(textures.size(), 2u);

@@ -37,6 +37,8 @@ struct AssetMeshes {
   SurfaceMesh rock;
   SurfaceMesh colluvium;                            // empty when there is none
   std::array<float, 3> bounds_min{}, bounds_max{};  // over both meshes, world units
+  // The preset's durability range over the rock voxels (what COLOR_1 normalises by).
+  std::array<float, 2> durability_range{0.0f, 1.0f};
 };
 
 }  // namespace rockbake

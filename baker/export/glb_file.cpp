@@ -1,8 +1,11 @@
 #include "export/glb_file.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <tiny_gltf.h>
 
@@ -30,7 +33,7 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
   a.bufferView = addView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   a.count = values.size() / std::size_t(components);
-  a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
+  a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
   if (bounds) {
     a.minValues.assign(std::size_t(components), std::numeric_limits<double>::max());
     a.maxValues.assign(std::size_t(components), std::numeric_limits<double>::lowest());
@@ -44,25 +47,31 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
   return int(model.accessors.size() - 1);
 }
 
-void addSurface(tinygltf::Model& model, const SurfaceMesh& m) {
+void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod) {
   const std::size_t n = m.positions.size();
   if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
       m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
     throw std::runtime_error("the " + m.name + " mesh lacks normals, colours or attributes, or has quads");
-  std::vector<float> positions, normals, colors;
-  positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n);
+  std::vector<float> positions, normals, colors, mask;
+  positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n), mask.reserve(4 * n);
+  const float d_lo = durability_range[0], d_span = durability_range[1] - durability_range[0];
+  const auto unit = [](float v) { return std::clamp(v, 0.0f, 1.0f); };
   for (std::size_t i = 0; i < n; ++i) {
     const auto& p = m.positions[i];
     const auto& q = m.normals[i];
     positions.insert(positions.end(), {p[0], p[2], -p[1]});  // z-up → y-up
     normals.insert(normals.end(), {q[0], q[2], -q[1]});
     colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
+    // The packed mask every DCC reads as a second colour set.
+    const float durability = m.durability[i] <= 0.0f ? 0.0f : d_span > 0 ? (m.durability[i] - d_lo) / d_span : 0.5f;
+    mask.insert(mask.end(), {unit(durability), unit(m.colluvium[i]), unit(m.curvature[i]), unit(m.altitude[i])});
   }
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.attributes["POSITION"] = addFloatAccessor(model, positions, 3, true);
   prim.attributes["NORMAL"] = addFloatAccessor(model, normals, 3, false);
   prim.attributes["COLOR_0"] = addFloatAccessor(model, colors, 3, false);
+  prim.attributes["COLOR_1"] = addFloatAccessor(model, mask, 4, false);
   prim.attributes["_DURABILITY"] = addFloatAccessor(model, m.durability, 1, false);
   prim.attributes["_COLLUVIUM"] = addFloatAccessor(model, m.colluvium, 1, false);
   prim.attributes["_CURVATURE"] = addFloatAccessor(model, m.curvature, 1, false);
@@ -85,12 +94,13 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m) {
   model.materials.push_back(material);
   prim.material = int(model.materials.size() - 1);
 
+  const std::string name = m.name + "_lod" + std::to_string(lod);
   tinygltf::Mesh mesh;
-  mesh.name = m.name;
+  mesh.name = name;
   mesh.primitives.push_back(prim);
   model.meshes.push_back(mesh);
   tinygltf::Node node;
-  node.name = m.name;
+  node.name = name;
   node.mesh = int(model.meshes.size() - 1);
   model.nodes.push_back(node);
   model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
@@ -98,7 +108,7 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m) {
 
 }  // namespace
 
-void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file) {
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "rockbake " ROCKBAKE_VERSION;
@@ -107,7 +117,7 @@ void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file) {
   model.defaultScene = 0;
   try {
     for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
-      if (!m->positions.empty()) addSurface(model, *m);
+      if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }

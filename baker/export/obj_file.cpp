@@ -17,8 +17,10 @@ namespace rockbake {
 void writeObj(const AssetMeshes& meshes, const std::filesystem::path& obj) {
   std::filesystem::path mtl = obj;
   mtl.replace_extension(".mtl");
-  std::string text =
-      fmt::format("# rockbake: world units, z up; vertex colours sRGB\nmtllib {}\n", mtl.filename().string());
+  std::string text = fmt::format(
+      "# rockbake: world units, y up (world x, z, -y), pivot at the footprint centre on the ground; vertex colours "
+      "sRGB\nmtllib {}\n",
+      mtl.filename().string());
   std::string materials = "# rockbake materials: white diffuse, the vertex colours carry the palette\n";
   auto out = std::back_inserter(text);
   std::size_t base = 1;  // OBJ indices are 1-based and global
@@ -42,12 +44,13 @@ void writeObj(const AssetMeshes& meshes, const std::filesystem::path& obj) {
     formatBlocks(n, [&](auto& it, std::size_t i) {
       const auto& p = m->positions[i];
       const auto& c = m->colors[i];
-      fmt::format_to(it, "v {} {} {} {:.4f} {:.4f} {:.4f}\n", p[0], p[1], p[2], linearToSrgb(c[0]), linearToSrgb(c[1]),
+      // y up, as DCCs read OBJ (the same axes as the GLB): world (x, y, z) -> (x, z, -y).
+      fmt::format_to(it, "v {} {} {} {:.4f} {:.4f} {:.4f}\n", p[0], p[2], -p[1], linearToSrgb(c[0]), linearToSrgb(c[1]),
                      linearToSrgb(c[2]));
     });
     formatBlocks(n, [&](auto& it, std::size_t i) {
       const auto& v = m->normals[i];
-      fmt::format_to(it, "vn {:.5f} {:.5f} {:.5f}\n", v[0], v[1], v[2]);
+      fmt::format_to(it, "vn {:.5f} {:.5f} {:.5f}\n", v[0], v[2], -v[1]);
     });
     formatBlocks(m->triangles.size(), [&](auto& it, std::size_t i) {
       const auto& t = m->triangles[i];

@@ -19,6 +19,7 @@
 
 #include "core/atomic_file.h"
 #include "core/openvdb_support.h"
+#include "mesh/extract_surfaces.h"
 
 namespace rockbake {
 namespace {
@@ -83,10 +84,10 @@ typename TreeT::Ptr denseToTree(const GridLayout& layout, typename TreeT::ValueT
 
 template <typename GridT>
 typename GridT::Ptr namedGrid(typename GridT::TreeType::Ptr tree, const char* name,
-                              const openvdb::math::Transform& transform) {
+                              const openvdb::math::Transform::Ptr& transform) {
   auto grid = GridT::create(tree);
   grid->setName(name);
-  grid->setTransform(transform.copy());
+  grid->setTransform(transform);
   return grid;
 }
 
@@ -139,14 +140,15 @@ void checkArrays(const VoxelRock& rock, const fs::path& file) {
 // Reads grid `name` as a GridT whose transform is the one writeRockVdb gives `layout`.
 template <typename GridT>
 typename GridT::Ptr readLayoutGrid(openvdb::io::File& vdb, const std::string& name, const GridLayout& layout,
-                                   const fs::path& file) {
+                                   const fs::path& file, const openvdb::Vec3d& pivot) {
   if (!vdb.hasGrid(name)) fail(file, "read", "no grid named \"" + name + "\"");
   auto grid = openvdb::gridPtrCast<GridT>(vdb.readGrid(name));
   if (!grid) fail(file, "read", "grid \"" + name + "\" is not a " + GridT::gridType());
 
   const auto& transform = grid->constTransform();
   const openvdb::Vec3d first = transform.indexToWorld(openvdb::Coord(0, 0, 0));
-  const Vec3d expected = layout.center(0, 0, 0);
+  const Vec3d centre = layout.center(0, 0, 0);
+  const Vec3d expected{centre[0] - pivot[0], centre[1] - pivot[1], centre[2] - pivot[2]};
   const double tolerance = 1e-6 * layout.h;
   bool same =
       transform.isLinear() && transform.hasUniformScale() && std::abs(transform.voxelSize()[0] - layout.h) <= tolerance;
@@ -164,26 +166,32 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
 
   std::string bytes;
   try {
+    // Index space stays voxel (x, y, z); world space has the asset's pivot at the origin.
+    const std::array<double, 3> pivot = footprintPivot(rock);
+    // One transform shared by every grid: Transform::copy() rebuilds the map and
+    // recomputes the voxel size from translated corners, which rounds it off h.
     const auto transform = voxelCenterTransform(layout);
+    transform->postTranslate(openvdb::Vec3d(-pivot[0], -pivot[1], -pivot[2]));
     auto rockGrid =
         namedGrid<openvdb::BoolGrid>(denseToTree<openvdb::BoolTree>(layout, false,
                                                                     [&](std::size_t cell, bool& value) {
                                                                       value = true;
                                                                       return rock.material[cell] == Material::Rock;
                                                                     }),
-                                     "rock", *transform);
+                                     "rock", transform);
     auto colluviumGrid =
         namedGrid<openvdb::BoolGrid>(denseToTree<openvdb::BoolTree>(layout, false,
                                                                     [&](std::size_t cell, bool& value) {
                                                                       value = true;
                                                                       return rock.material[cell] == Material::Colluvium;
                                                                     }),
-                                     "colluvium", *transform);
+                                     "colluvium", transform);
     // The mesh stage's field is shared with it, so it is written from a shallow copy under our name.
     // Otherwise closingSteps = 0: the sign must follow the occupancy exactly, crevices included.
     openvdb::FloatGrid::Ptr sdfGrid =
         rock_sdf && rock_sdf->grid ? rock_sdf->grid->copy()
                                    : openvdb::tools::topologyToLevelSet(*rockGrid, kSdfHalfWidth, /*closingSteps=*/0);
+    sdfGrid->setTransform(transform);
     // Built after the level set, whose working grids are the largest part of
     // writing: the two are never in memory at once.
     auto durabilityGrid =
@@ -194,13 +202,14 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
                                                                         value = rock.durability[cell];
                                                                         return true;
                                                                       }),
-                                      "durability", *transform);
+                                      "durability", transform);
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 
     openvdb::MetaMap metadata;
     metadata.insertMeta("creator", openvdb::StringMetadata("rockbake"));
     metadata.insertMeta("voxel_size", openvdb::DoubleMetadata(layout.h));
+    metadata.insertMeta("pivot", openvdb::Vec3DMetadata(openvdb::Vec3d(pivot[0], pivot[1], pivot[2])));
 #ifdef ROCKBAKE_VERSION
     metadata.insertMeta("rockbake_version", openvdb::StringMetadata(ROCKBAKE_VERSION));
 #endif
@@ -246,9 +255,13 @@ VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
     if (!fs::exists(file, error)) fail(file, "read", error ? error.message() : "no such file");
     openvdb::io::File vdb(file.string());
     vdb.open(/*delayLoad=*/false);
-    const auto rockGrid = readLayoutGrid<openvdb::BoolGrid>(vdb, "rock", layout, file);
-    const auto colluviumGrid = readLayoutGrid<openvdb::BoolGrid>(vdb, "colluvium", layout, file);
-    const auto durabilityGrid = readLayoutGrid<openvdb::FloatGrid>(vdb, "durability", layout, file);
+    // Files written before the pivot have none: their world frame is the grid's.
+    openvdb::Vec3d pivot(0.0);
+    if (const auto meta = vdb.getMetadata(); meta)
+      if (const auto p = meta->getMetadata<openvdb::Vec3DMetadata>("pivot")) pivot = p->value();
+    const auto rockGrid = readLayoutGrid<openvdb::BoolGrid>(vdb, "rock", layout, file, pivot);
+    const auto colluviumGrid = readLayoutGrid<openvdb::BoolGrid>(vdb, "colluvium", layout, file, pivot);
+    const auto durabilityGrid = readLayoutGrid<openvdb::FloatGrid>(vdb, "durability", layout, file, pivot);
     vdb.close();
 
     forEachActive(*rockGrid, [&](std::size_t cell, bool on) {

@@ -18,9 +18,10 @@ struct SmoothedSdf;  // io/openvdb_support.h
 //                           mesh stage's smoothed field when `rock_sdf` is given
 //                           (the surface the meshes were made from), else a narrow
 //                           band (3 voxels each side) of the rock occupancy
-// Index space is the voxel (x, y, z) of the VoxelRock; every grid's transform
-// maps index (i, j, k) to layout.center(i, j, k). File metadata: creator
-// "rockbake", voxel_size h. The bytes are a pure function of the rock: the
+// Index space is the voxel (x, y, z) of the VoxelRock; every grid shares one
+// transform, mapping index (i, j, k) to layout.center(i, j, k) - pivot, where
+// pivot = footprintPivot(rock) (the meshes' origin, the footprint's centre on
+// the ground). File metadata: creator "rockbake", voxel_size h, pivot. The bytes are a pure function of the rock: the
 // archive's random UUID is replaced by one hashed from the rest of the file,
 // so the same rock gives the same file at any thread count.
 // Throws std::runtime_error on failure.

@@ -3,6 +3,7 @@
 #include "core/mesh_checks.h"
 
 #include "core/openvdb_support.h"
+#include "mesh/subdivide.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,16 +11,21 @@
 #include <stdexcept>
 
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/LevelSetFilter.h>
 #include <openvdb/tools/TopologyToLevelSet.h>
+#include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 namespace rockbake {
 namespace {
 
-constexpr int kHalfWidth = 3;     // narrow band, voxels each side
-constexpr int kMirrorLayers = 3;  // layers mirrored below the ground before smoothing
+constexpr int kHalfWidth = 3;         // narrow band, voxels each side
+constexpr int kMirrorLayers = 3;      // layers mirrored below the ground before smoothing
+constexpr float kSideMargin = 0.05f;  // voxels: how far inside (outside) a sample of (not of) the material stays
 
 SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
                             openvdb::FloatGrid::Ptr* field) {
@@ -52,6 +58,20 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
   if (passes > 0) {
     openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*sdf);
     for (int i = 0; i < passes; ++i) filter.gaussian(1);
+    // Smoothing must not change what the rock is: every sample keeps the side
+    // of its voxel (inside where the material is, outside elsewhere), so a
+    // one-voxel neck stays connected and a one-voxel gap stays open; the
+    // surface still moves freely between the samples.
+    const float margin = kSideMargin * float(g.h);
+    for (auto it = sdf->tree().beginValueOn(); it; ++it) {
+      const openvdb::Coord c = it.getCoord();
+      const int z = c.z() < 0 && g.ground ? -1 - c.z() : c.z();  // mirrored layers follow their originals
+      const bool inside = c.x() >= 0 && c.y() >= 0 && z >= 0 && c.x() < g.nx && c.y() < g.ny && z < g.nz &&
+                          (c.z() >= 0 || z < kMirrorLayers) && rock.material[g.index(c.x(), c.y(), z)] == material;
+      const float v = *it;
+      if (inside && v > -margin) it.setValue(-margin);
+      if (!inside && v < margin) it.setValue(margin);
+    }
   }
   if (g.ground) {
     // Intersect with the half-space z >= 0: phi = max(phi, -z). Below the
@@ -101,6 +121,122 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
 }
 
 }  // namespace
+
+std::array<double, 3> footprintPivot(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  int lo[3] = {g.nx, g.ny, g.nz}, hi[3] = {-1, -1, -1};
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const Material m = rock.material[g.index(x, y, z)];
+        if (m != Material::Rock && m != Material::Colluvium) continue;
+        const int c[3] = {x, y, z};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a] + 1);
+      }
+  if (hi[0] < 0) lo[0] = lo[1] = lo[2] = 0, hi[0] = g.nx, hi[1] = g.ny, hi[2] = g.nz;
+  const double h = g.h;
+  return {g.origin[0] + 0.5 * (lo[0] + hi[0]) * h, g.origin[1] + 0.5 * (lo[1] + hi[1]) * h,
+          g.ground ? 0.0 : g.origin[2] + lo[2] * h};
+}
+
+void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot) {
+  for (SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
+    for (auto& p : m->positions)
+      for (int a = 0; a < 3; ++a) p[a] = float(double(p[a]) - pivot[a]);
+  for (int a = 0; a < 3; ++a)
+    meshes.bounds_min[a] = float(double(meshes.bounds_min[a]) - pivot[a]),
+    meshes.bounds_max[a] = float(double(meshes.bounds_max[a]) - pivot[a]);
+}
+
+void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field_ptr, bool ground) {
+  if (!field_ptr) return;
+  const SmoothedSdf& field = *field_ptr;
+  if (!field.grid || mesh.positions.empty()) return;
+  const openvdb::FloatGrid& grid = *field.grid;
+  const double h = grid.voxelSize()[0];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096), [&](const auto& range) {
+    // One accessor-backed sampler per task: samplers are not thread-safe.
+    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(
+        grid.getConstAccessor(), grid.transform());
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      auto& p = mesh.positions[i];
+      if (ground && p[2] == 0.0f) continue;
+      openvdb::Vec3d q(p[0], p[1], p[2]);
+      // Steps of at most half a voxel, until on the level set: Catmull-Clark
+      // can pull a sharp corner or a thin leg more than a voxel inside.
+      for (int step = 0; step < 6; ++step) {
+        const double phi = sample.wsSample(q);
+        if (std::abs(phi) < 1e-3 * h) break;
+        openvdb::Vec3d g;
+        for (int a = 0; a < 3; ++a) {
+          openvdb::Vec3d d(0.0);
+          d[a] = 0.5 * h;
+          g[a] = (sample.wsSample(q + d) - sample.wsSample(q - d)) / h;
+        }
+        const double g2 = g.lengthSqr();
+        if (g2 < 1e-8) break;
+        openvdb::Vec3d move = g * (phi / g2);
+        if (move.length() > 0.5 * h) move *= 0.5 * h / move.length();  // never jump across a thin part
+        q -= move;
+      }
+      p = {float(q[0]), float(q[1]), ground ? std::max(float(q[2]), 0.0f) : float(q[2])};
+    }
+  });
+  computeVertexNormals(mesh);
+}
+
+double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, bool ground) {
+  if (mesh.triangles.empty() || mesh.normals.size() != mesh.positions.size()) return 0.0;
+  double total = 0.0;
+  // Two steps of delta = (target - V) / area: the second absorbs the change of area.
+  for (int step = 0; step < 2; ++step) {
+    double area = 0.0;
+    for (const auto& t : mesh.triangles) {
+      const auto& a = mesh.positions[t[0]];
+      const auto& b = mesh.positions[t[1]];
+      const auto& c = mesh.positions[t[2]];
+      const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+      const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+      const bool cap = ground && a[2] == 0.0f && b[2] == 0.0f && c[2] == 0.0f;
+      if (!cap)
+        area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                                std::pow(u[0] * v[1] - u[1] * v[0], 2));
+    }
+    if (area <= 0) break;
+    const double delta =
+        std::clamp((target_volume - signedVolume(mesh)) / area, -max_offset - total, max_offset - total);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      auto& p = mesh.positions[i];
+      if (ground && p[2] == 0.0f) continue;
+      for (int a = 0; a < 3; ++a) p[a] = float(double(p[a]) + delta * mesh.normals[i][a]);
+      if (ground) p[2] = std::max(p[2], 0.0f);
+    }
+    total += delta;
+    computeVertexNormals(mesh);
+  }
+  return total;
+}
+
+std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta,
+                                               bool ground) {
+  if (!field || !field->grid || delta == 0.0) return field;
+  openvdb::FloatGrid::Ptr moved = field->grid->deepCopy();
+  const float d = float(delta);
+  const openvdb::math::Transform& xform = moved->transform();
+  // The ground clip -z stays where it is (max(phi - d, -z)): only the rock's own
+  // surface moved, the cap did not. It was written at index z <= 0 only.
+  const auto clipAt = [&](int k) { return -float(xform.indexToWorld(openvdb::Coord(0, 0, k)).z()); };
+  openvdb::tools::foreach (moved->beginValueAll(), [&](const openvdb::FloatGrid::ValueAllIter& it) {
+    float v = *it - d;
+    if (ground) {
+      openvdb::CoordBBox box;
+      it.getBoundingBox(box);
+      if (box.min().z() <= 0) v = std::max(v, clipAt(std::min(box.max().z(), 0)));
+    }
+    it.setValue(v);
+  });
+  return std::make_shared<const SmoothedSdf>(SmoothedSdf{moved});
+}
 
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
                             std::shared_ptr<const SmoothedSdf>* rock_sdf) {

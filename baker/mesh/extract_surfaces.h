@@ -15,6 +15,7 @@
 // half a voxel) and no vertex lies below it. The ground itself is not meshed.
 #pragma once
 
+#include <array>
 #include <memory>
 
 #include "core/surface_mesh.h"
@@ -36,5 +37,33 @@ struct ExtractParams {
 // Throws std::runtime_error if OpenVDB fails.
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
                             std::shared_ptr<const SmoothedSdf>* rock_sdf = nullptr);
+
+// The asset's pivot (SPEC §3, Megascans' convention): the centre of the solid
+// voxels' (rock and colluvium) footprint, on the ground (z = 0; without ground,
+// the lowest voxel's floor). World units. Meshes, rock.vdb and the scene are
+// all written relative to it. The grid's centre when nothing is solid.
+std::array<double, 3> footprintPivot(const VoxelRock& rock);
+
+// Translates both surfaces and the bounds by -pivot.
+void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot);
+
+// Moves every vertex not on the ground cap onto the zero crossing of `field`
+// (two Newton steps along the field's gradient, trilinear samples), so a
+// refined surface lies on the level set it was extracted from, as rock.vdb
+// records it. Normals are recomputed.
+void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field, bool ground);
+
+// Smoothing rounds convex rock off: the surface encloses less than its voxels.
+// Moves every vertex of a triangle mesh with normals, except those on the
+// ground cap (z = 0 with `ground`), along its normal by one distance delta
+// (world units, |delta| <= max_offset) so that it encloses `target_volume`,
+// recomputes the normals and returns delta. No vertex goes below z = 0.
+double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, bool ground);
+
+// `field` with its zero crossing moved outwards by delta (phi - delta), to
+// follow a surface moved by matchVolume. With `ground`, the clip at z = 0 is
+// kept in place: max(phi - delta, -z) where extractSurfaces clipped.
+std::shared_ptr<const SmoothedSdf> offsetField(const std::shared_ptr<const SmoothedSdf>& field, double delta,
+                                               bool ground);
 
 }  // namespace rockbake

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
+#include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {
@@ -57,8 +59,8 @@ void forEachEdge(const std::vector<unsigned int>& indices, Visit&& visit) {
 // Collapsing a thin part can leave two coincident triangles of opposite
 // winding glued back to back (each of their edges then has four faces).
 // Removing both restores edge-manifoldness; the surface is pinched there, as
-// the collapse intended.
-void dropSandwiches(std::vector<unsigned int>& indices) {
+// the collapse intended. Returns the vertices of the removed triangles.
+std::vector<unsigned int> dropSandwiches(std::vector<unsigned int>& indices) {
   const std::size_t n = indices.size() / 3;
   // Triangles by their sorted corners: coincident triangles sit side by side.
   std::vector<std::pair<std::array<unsigned int, 3>, std::size_t>> sorted(n);
@@ -69,19 +71,21 @@ void dropSandwiches(std::vector<unsigned int>& indices) {
   }
   tbb::parallel_sort(sorted.begin(), sorted.end());
   std::vector<char> drop(n, 0);
-  bool any = false;
+  std::vector<unsigned int> dropped;
   // Pair them off two by two within a run of equal corners (an odd one out stays).
   for (std::size_t i = 0; i + 1 < n; ++i)
     if (sorted[i].first == sorted[i + 1].first) {
-      drop[sorted[i].second] = drop[sorted[i + 1].second] = 1, any = true;
+      drop[sorted[i].second] = drop[sorted[i + 1].second] = 1;
+      dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
       ++i;
     }
-  if (!any) return;
+  if (dropped.empty()) return dropped;
   std::size_t w = 0;
   for (std::size_t t = 0; t < n; ++t)
     if (!drop[t])
       for (int k = 0; k < 3; ++k) indices[w++] = indices[3 * t + k];
   indices.resize(w);
+  return dropped;
 }
 
 // Directed edges whose undirected edge is not used exactly once in each direction.
@@ -178,37 +182,56 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
   return copies;
 }
 
-// `m` simplified to about `target_triangles` (at least 4); `ratio` only for the log.
-SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio) {
-  if (m.triangles.empty()) return m;
-  const std::size_t index_count = 3 * m.triangles.size();
-  const std::size_t target = std::max<std::size_t>(4, target_triangles) * 3;
-  std::vector<unsigned int> indices(index_count), simplified;
-  for (std::size_t t = 0; t < m.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) indices[3 * t + k] = m.triangles[t][k];
-  // meshoptimizer does not check the link condition: a collapse can glue two
-  // triangles back to back or pinch two sheets onto one edge. Repair both;
-  // where the repair cannot pair the faces of an edge, simplify once more to a
-  // target 1 % lower, and keep the better result.
-  std::vector<unsigned int> copies;
-  std::size_t bad = std::numeric_limits<std::size_t>::max();
-  for (int attempt = 0; attempt < 2 && bad > 0; ++attempt) {
-    const double nudge = attempt == 0 ? 1.0 : 0.99;
-    const std::size_t attempt_target = std::max<std::size_t>(4, std::size_t(double(target / 3) * nudge)) * 3;
-    std::vector<unsigned int> result(index_count);
-    float error = 0.0f;
-    result.resize(meshopt_simplify(result.data(), indices.data(), index_count, &m.positions[0][0], m.positions.size(),
-                                   sizeof(std::array<float, 3>), attempt_target, 1.0f, meshopt_SimplifyLockBorder,
-                                   &error));
-    dropSandwiches(result);
-    std::vector<unsigned int> result_copies = splitPinches(result, m.positions);
-    const std::size_t result_bad = nonManifoldEdges(result);
-    spdlog::debug("LOD {} of {}: {} → {} triangles, error {:.2g}, {} pinched vertices split, {} non-manifold edges",
-                  ratio, m.name, m.triangles.size(), result.size() / 3, error, result_copies.size(), result_bad);
-    if (result_bad < bad) bad = result_bad, simplified = std::move(result), copies = std::move(result_copies);
+using Point = std::array<float, 3>;
+
+// One simplification pass: the unlocked triangles simplified with their
+// border (where they meet the locked ones) held in place, the locked ones kept
+// as they are, then the simplifier's damage repaired as far as it can be.
+struct Pass {
+  SurfaceMesh mesh;
+  std::size_t bad_edges = 0;  // edges not shared by exactly two faces after the repair
+  std::vector<Point> torn;    // vertices of those edges
+  std::vector<Point> cut;     // pinches that cut the surface in two
+  std::vector<Point> folded;  // vertices of fold-overs and zero-area triangles the repair left
+};
+
+Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices, const std::vector<char>& locked,
+                  std::size_t target_indices, float relative_error, double ratio) {
+  std::vector<unsigned int> free, kept;
+  for (std::size_t t = 0; t < locked.size(); ++t)
+    (locked[t] ? kept : free).insert((locked[t] ? kept : free).end(), &indices[3 * t], &indices[3 * t] + 3);
+  const std::size_t free_target =
+      std::min(free.size(), target_indices > kept.size() + 12 ? target_indices - kept.size() : std::size_t(12));
+  std::vector<unsigned int> result(free.size());
+  float error = 0.0f;
+  result.resize(meshopt_simplify(result.data(), free.data(), free.size(), &m.positions[0][0], m.positions.size(),
+                                 sizeof(Point), free_target, relative_error, meshopt_SimplifyLockBorder, &error));
+  result.insert(result.end(), kept.begin(), kept.end());
+
+  Pass pass;
+  const std::vector<unsigned int> glued = dropSandwiches(result);
+  const std::vector<unsigned int> copies = splitPinches(result, m.positions);
+  pass.bad_edges = nonManifoldEdges(result);
+  spdlog::debug(
+      "LOD {} of {}: {} → {} triangles ({} locked), error {:.2g}, {} pinched vertices split, {} glued, "
+      "{} non-manifold edges",
+      ratio, m.name, m.triangles.size(), result.size() / 3, kept.size() / 3, error, copies.size(), glued.size() / 3,
+      pass.bad_edges);
+  // A pinch whose split leaves the copy and its vertex in different pieces cut
+  // the surface in two (a neck collapsed to a point); other pinches, and glued
+  // pairs, only change the genus or seal a slot thinner than the error.
+  if (!copies.empty()) {
+    std::vector<std::uint32_t> parent(m.positions.size() + copies.size());
+    for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+    const auto find = [&](std::uint32_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (std::size_t t = 0; t < result.size(); t += 3)
+      parent[find(result[t + 1])] = find(result[t]), parent[find(result[t + 2])] = find(result[t]);
+    for (std::size_t j = 0; j < copies.size(); ++j)
+      if (find(std::uint32_t(m.positions.size() + j)) != find(copies[j])) pass.cut.push_back(m.positions[copies[j]]);
   }
-  if (bad > 0)
-    spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name, bad);
   const auto source = [&](std::size_t i) {
     return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
   };
@@ -216,8 +239,8 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
   // Keep only the vertices still referenced, in their original order (copies last).
   constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> remap(m.positions.size() + copies.size(), kUnused);
-  for (unsigned int i : simplified) remap[i] = 0;
-  SurfaceMesh out;
+  for (unsigned int i : result) remap[i] = 0;
+  SurfaceMesh& out = pass.mesh;
   out.name = m.name;
   for (std::size_t i = 0; i < remap.size(); ++i) {
     if (remap[i] == kUnused) continue;
@@ -230,35 +253,180 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
     out.altitude.push_back(m.altitude[s]);
     if (!m.colors.empty()) out.colors.push_back(m.colors[s]);
   }
-  out.triangles.reserve(simplified.size() / 3);
-  for (std::size_t t = 0; t < simplified.size(); t += 3)
-    out.triangles.push_back({remap[simplified[t]], remap[simplified[t + 1]], remap[simplified[t + 2]]});
-  computeVertexNormals(out);
-  return out;
+  out.triangles.reserve(result.size() / 3);
+  for (std::size_t t = 0; t < result.size(); t += 3)
+    out.triangles.push_back({remap[result[t]], remap[result[t + 1]], remap[result[t + 2]]});
+  // meshoptimizer 0.18 lets a collapse leave a triangle of zero area or one
+  // folded against its neighbours; flip and collapse those away (the repair
+  // needs every edge paired).
+  if (pass.bad_edges == 0)
+    repairFoldOvers(out);
+  else
+    computeVertexNormals(out);
+  const MeshDefects d = checkMesh(out);
+  for (std::uint32_t v : d.open_edge_vertices) pass.torn.push_back(out.positions[v]);
+  if (pass.bad_edges == 0)
+    for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(out.positions[v]);
+  return pass;
+}
+
+// Locks every triangle of `m` with a vertex within `radius` of a trouble point
+// (a hash grid of the points, cells `radius` wide). Returns how many it locked.
+std::size_t lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double radius,
+                       std::vector<char>& locked) {
+  const auto cell = [&](const Point& p) {
+    return std::array<std::int64_t, 3>{std::int64_t(std::floor(p[0] / radius)), std::int64_t(std::floor(p[1] / radius)),
+                                       std::int64_t(std::floor(p[2] / radius))};
+  };
+  const auto key = [](const std::array<std::int64_t, 3>& c) {
+    return std::uint64_t(c[0] * 73856093) ^ std::uint64_t(c[1] * 19349663) ^ std::uint64_t(c[2] * 83492791);
+  };
+  std::unordered_map<std::uint64_t, std::vector<Point>> grid;
+  for (const Point& p : trouble) grid[key(cell(p))].push_back(p);
+  std::vector<char> near(m.positions.size(), 0);
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const Point& p = m.positions[v];
+    const auto c = cell(p);
+    for (int dx = -1; dx <= 1 && !near[v]; ++dx)
+      for (int dy = -1; dy <= 1 && !near[v]; ++dy)
+        for (int dz = -1; dz <= 1 && !near[v]; ++dz) {
+          const auto it = grid.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == grid.end()) continue;
+          for (const Point& q : it->second) {
+            const double d2 =
+                std::pow(double(p[0]) - q[0], 2) + std::pow(double(p[1]) - q[1], 2) + std::pow(double(p[2]) - q[2], 2);
+            if (d2 <= radius * radius) {
+              near[v] = 1;
+              break;
+            }
+          }
+        }
+  }
+  std::size_t count = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tri = m.triangles[t];
+    if (!locked[t] && (near[tri[0]] || near[tri[1]] || near[tri[2]])) locked[t] = 1, ++count;
+  }
+  return count;
+}
+
+double meanEdgeLength(const SurfaceMesh& m) {
+  double sum = 0;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Point& a = m.positions[t[k]];
+      const Point& b = m.positions[t[(k + 1) % 3]];
+      sum += std::sqrt(std::pow(double(a[0]) - b[0], 2) + std::pow(double(a[1]) - b[1], 2) +
+                       std::pow(double(a[2]) - b[2], 2));
+    }
+  return m.triangles.empty() ? 0.0 : sum / double(3 * m.triangles.size());
+}
+
+// `m` simplified to about `target_triangles` (at least 4) or until the error
+// would pass `max_error` (world units), whichever comes first; `ratio` only for the log.
+// meshoptimizer does not check the link condition: a collapse can glue two
+// triangles back to back, pinch two sheets together, tear an edge open or fold
+// a triangle over. Each pass repairs what it can; where anything is left, or
+// the surface fell into more pieces than it had, the triangles around those
+// places are locked (kept as they are) and the rest simplified again, the
+// locked neighbourhood doubling each time. The cleanest pass is kept.
+SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, double ratio, double max_error = -1.0) {
+  if (given.triangles.empty()) return given;
+  const SurfaceMesh& m = given;
+  const std::size_t index_count = 3 * m.triangles.size();
+  const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
+  std::vector<unsigned int> indices(index_count);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) indices[3 * t + k] = m.triangles[t][k];
+  const float scale = meshopt_simplifyScale(&m.positions[0][0], m.positions.size(), sizeof(Point));
+  const float relative_error = max_error < 0 || scale <= 0 ? 1.0f : float(max_error / scale);
+
+  // Defects the input already has are not the simplifier's doing.
+  const MeshDefects input = checkMesh(m);
+  std::vector<Point> inherited;
+  for (std::uint32_t v : input.defect_vertices) inherited.push_back(m.positions[v]);
+  std::sort(inherited.begin(), inherited.end());
+
+  // Error-bounded (LOD0): lock around every tear, cut and new fold and
+  // simplify the rest again, the locked neighbourhood doubling each pass.
+  // Triangle budgets (further LODs): locking spends the budget, so first aim a
+  // little lower or higher (1 %, 2 % either way), and lock only around tears
+  // still left after that. A tear outweighs any number of cuts, a cut any
+  // number of folds.
+  const bool budget = max_error < 0;
+  constexpr int kPasses = 7;
+  constexpr std::array<double, kPasses> kNudge{1.0, 0.99, 1.01, 0.98, 1.02, 1.0, 1.0};
+  std::vector<char> locked(m.triangles.size(), 0);
+  std::optional<Pass> best;
+  std::size_t best_score = std::numeric_limits<std::size_t>::max();
+  double radius = 2.0 * meanEdgeLength(m);
+  for (int attempt = 0; attempt < kPasses; ++attempt) {
+    const std::size_t pass_target =
+        budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
+               : target;
+    Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, ratio);
+    std::vector<Point> folds;
+    for (const Point& p : pass.folded)
+      if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
+    const std::size_t score = 1000000 * pass.bad_edges + 1000 * pass.cut.size() + folds.size();
+    std::vector<Point> lock_around = pass.torn;
+    if (!budget) {
+      lock_around.insert(lock_around.end(), pass.cut.begin(), pass.cut.end());
+      lock_around.insert(lock_around.end(), folds.begin(), folds.end());
+    }
+    const bool better = score < best_score;
+    if (better) best_score = score, best = std::move(pass);
+    if (score == 0) break;
+    if (budget && (attempt < 4 || best->bad_edges == 0)) continue;
+    if (lock_around.empty()) {
+      if (budget) continue;
+      break;  // nothing to lock around
+    }
+    lockAround(m, lock_around, radius, locked);
+    radius *= 2.0;
+  }
+  if (best->bad_edges > 0) {
+    spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name,
+                 best->bad_edges);
+  } else if (const MeshDefects d = checkMesh(best->mesh); d.fold_overs + d.zero_area > 0) {
+    spdlog::warn("LOD {} of the {} surface keeps {} folded or zero-area triangles", ratio, m.name,
+                 d.fold_overs + d.zero_area);
+  }
+  return std::move(best->mesh);
 }
 
 }  // namespace
 
+AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
+  AssetMeshes lod0;
+  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0.0, max_error); },
+                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0.0, max_error); });
+  lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
+  lod0.durability_range = meshes.durability_range;
+  return lod0;
+}
+
 std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params) {
-  // Each LOD is simplified from the previous one when the ratios decrease,
-  // which is cheaper than starting from the full mesh every time; targets stay
-  // shares of the full mesh. The two surfaces simplify in parallel.
+  // Each LOD is simplified from the previous one (cheaper than starting from
+  // the input every time); targets stay shares of the input. The two surfaces
+  // simplify in parallel.
   std::vector<AssetMeshes> lods;
-  lods.reserve(params.ratios.size());
+  lods.reserve(params.targets.size());
   const AssetMeshes* from = &meshes;
-  double from_ratio = 1.0;
-  const auto target = [](const SurfaceMesh& full, double ratio) {
-    return std::size_t(std::llround(ratio * double(full.triangles.size())));
-  };
-  for (double ratio : params.ratios) {
-    if (ratio >= from_ratio) from = &meshes;
+  const double rock = double(meshes.rock.triangles.size()), colluvium = double(meshes.colluvium.triangles.size());
+  const double total = std::max(1.0, rock + colluvium);
+  for (double target : params.targets) {
+    const double ratio = target >= 1.0 ? target / total : target;
+    const auto count = [&](double full) { return std::size_t(std::llround(ratio * full)); };
+    if (count(rock) > from->rock.triangles.size() || count(colluvium) > from->colluvium.triangles.size())
+      from = &meshes;
     AssetMeshes lod;
-    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, target(meshes.rock, ratio), ratio); },
-                         [&] { lod.colluvium = simplify(from->colluvium, target(meshes.colluvium, ratio), ratio); });
+    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), ratio); },
+                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), ratio); });
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
+    lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));
     from = &lods.back();
-    from_ratio = ratio;
   }
   return lods;
 }

@@ -1,6 +1,9 @@
 // Levels of detail (SPEC §3): meshoptimizer edge-collapse simplification of
-// each surface to a share of its triangles, borders locked, every kept vertex
-// keeping its attributes and colour; normals recomputed.
+// each surface, borders locked, every kept vertex keeping its attributes and
+// colour (meshoptimizer only removes vertices, so every vertex of a LOD lies on
+// the surface it was simplified from); normals recomputed. LOD0 is simplified
+// to an error bound, the further LODs to triangle budgets. No LOD has
+// fold-overs or zero-area triangles (repairFoldOvers after the simplifier).
 #pragma once
 
 #include <vector>
@@ -10,10 +13,18 @@
 namespace rockbake {
 
 struct LodParams {
-  std::vector<double> ratios;  // each in (0, 1): target triangles ÷ input triangles
+  // Each entry either a ratio in (0, 1) (target triangles ÷ the input's) or a
+  // triangle count >= 1 for both surfaces together, shared between them in
+  // proportion to the input's triangles.
+  std::vector<double> targets;
 };
 
-// One AssetMeshes per ratio, in order. Input meshes must be triangle-only.
+// LOD0: each surface simplified as far as meshoptimizer can while its error
+// (its distance estimate from the input surface) stays within `max_error`
+// (world units). Input meshes must be triangle-only.
+AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error);
+
+// One AssetMeshes per target, in order. Input meshes must be triangle-only.
 // Targets are approached with no error bound (meshoptimizer may stop a little
 // short where every collapse would flip a face). meshoptimizer does not keep
 // manifoldness by itself, so coincident back-to-back triangle pairs are

@@ -21,7 +21,9 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "export/vdb_file.h"
+#include "pipeline/asset_json.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
@@ -239,6 +241,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
     stages["mesh_attributes"] = meshes.attributes_seconds;
+    stages["mesh_simplify"] = meshes.simplify_seconds;
     stages["export"] = meshes.export_seconds;
     clock.lap();
     // rock_sdf in the VDB is the field the meshes were made from.
@@ -264,6 +267,19 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
                    (summary.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
       clock.lap();
     }
+
+    AssetDescription asset;
+    asset.name = preset.name;
+    asset.tags = preset.tags;
+    asset.units_per_meter = preset.units_per_meter;
+    asset.lods.push_back({meshes.lod_files.at(0), &meshes.meshes});
+    for (std::size_t i = 0; i < meshes.lods.size(); ++i)
+      asset.lods.push_back({meshes.lod_files.at(i + 1), &meshes.lods[i]});
+    asset.preview = options.render ? "render.png" : "";
+    const std::filesystem::path base =
+        options.manifest.base_dir.empty() ? preset.file.parent_path() : options.manifest.base_dir;
+    asset.input_hash = bakeInputHash(preset, options.mesh, options.render, base);
+    writeAssetJson(asset, dir);
   }
 
   summary.seconds = clock.elapsed();

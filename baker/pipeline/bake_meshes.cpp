@@ -18,6 +18,7 @@
 #include "mesh/extract_surfaces.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
+#include "mesh/surface_detail.h"
 #include "sim/weathering.h"
 
 namespace rockbake {
@@ -39,16 +40,36 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   const SubdivideParams levels{preset.mesh.subdivision};
   meshes.rock = subdivideSurface(meshes.rock, levels);
   meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
+  // Catmull-Clark pulls the surface inside the field it was extracted from: put
+  // it back on it. Then give back the voxels' volume smoothing rounded off.
+  projectOntoField(meshes.rock, r.rock_sdf.get(), rock.layout.ground);
+  const GridLayout& g = rock.layout;
+  const double voxel = g.h * g.h * g.h;
+  const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
+  matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
+  r.rock_sdf = offsetField(r.rock_sdf, delta, g.ground);
+  // The shift along vertex normals and the field's shift agree only where its
+  // gradient has unit length: settle the vertices on the field rock.vdb keeps.
+  projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
   r.subdivide_seconds = clock.lap();
+
+  const PaletteParams palette = paletteParams(rock, preset.bake);
+  if (preset.mesh.detail)
+    displaceSurface(meshes.rock,
+                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
   updateBounds(meshes);
-
-  meshes = applyPalette(std::move(meshes), paletteParams(rock, preset.bake));
+  meshes.durability_range = {palette.durability_min, palette.durability_max};
+  meshes = applyPalette(std::move(meshes), palette);
+  r.pivot = footprintPivot(rock);
+  movePivot(meshes, r.pivot);
   r.attributes_seconds += clock.lap();
-  spdlog::debug("{}: rock {} vertices, {} triangles; colluvium {} vertices, {} triangles", preset.name,
-                meshes.rock.positions.size(), meshes.rock.triangles.size(), meshes.colluvium.positions.size(),
-                meshes.colluvium.triangles.size());
 
-  r.meshes = std::move(meshes);
+  r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
+  r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h);
+  r.simplify_seconds = clock.lap();
+  spdlog::debug("{}: refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, {} triangles",
+                preset.name, r.refined_triangles, r.meshes.rock.positions.size(), r.meshes.rock.triangles.size(),
+                r.meshes.colluvium.positions.size(), r.meshes.colluvium.triangles.size());
   return r;
 }
 
@@ -56,9 +77,16 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
   MeshStageResult r = buildMeshes(rock, preset);
   const AssetMeshes& meshes = r.meshes;
   const Stopwatch export_clock;
+  if (exportsFormat(preset, "glb")) {
+    Stopwatch clock;
+    r.lods = simplifyLods(meshes, {preset.mesh.lods});
+    r.simplify_seconds += clock.lap();
+  }
+  r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");
+  for (std::size_t i = 0; i < r.lods.size(); ++i) r.lod_files.push_back("rock_lod" + std::to_string(i + 1) + ".glb");
 
   // The files are independent: write them concurrently, so one file's
-  // formatting or simplification overlaps another's disk writes and fsync.
+  // formatting overlaps another's disk writes and fsync.
   const auto timed = [&](const char* what, auto&& write) {
     return [&, what, write] {
       Stopwatch clock;
@@ -78,12 +106,9 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const st
   }
   if (exportsFormat(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
   if (exportsFormat(preset, "glb")) {
-    exports.run(timed("glb", [&] { writeGlb(meshes, asset_dir / "rock.glb"); }));
-    exports.run(timed("lods", [&] {
-      const std::vector<AssetMeshes> lods = simplifyLods(meshes, {preset.mesh.lods});
-      for (std::size_t i = 0; i < lods.size(); ++i)
-        writeGlb(lods[i], asset_dir / ("rock_lod" + std::to_string(i + 1) + ".glb"));
-    }));
+    exports.run(timed("glb", [&] { writeGlb(meshes, asset_dir / "rock.glb", 0); }));
+    for (std::size_t i = 0; i < r.lods.size(); ++i)
+      exports.run(timed("lod", [&, i] { writeGlb(r.lods[i], asset_dir / r.lod_files[i + 1], int(i + 1)); }));
   }
   exports.wait();  // rethrows the first failure
   r.export_seconds = export_clock.elapsed();

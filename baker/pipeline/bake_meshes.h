@@ -1,14 +1,18 @@
 // The mesh stage of the recipe (SPEC §3): final grid ─▶ surfaces ─▶ attributes
-// ─▶ subdivision ─▶ palette ─▶ files in the asset folder, as the preset's
-// `export:` list asks:
+// ─▶ subdivision ─▶ volume matched to the voxels ─▶ surface detail ─▶ palette
+// ─▶ pivot ─▶ LOD0 (simplified to mesh.max_error) ─▶ files in the asset folder,
+// as the preset's `export:` list asks, every mesh file holding LOD0:
 //   ply  rock.ply, colluvium.ply (one surface each; colluvium only if any)
-//   obj  rock.obj + rock.mtl (both surfaces, one object each)
-//   glb  rock.glb (both surfaces, one node each), and rock_lod1.glb, … per mesh.lods ratio
+//   obj  rock.obj + rock.mtl (both surfaces, one object each, y up)
+//   glb  rock.glb (both surfaces, one node each: rock_lod0, colluvium_lod0), and
+//        rock_lod1.glb, … per mesh.lods entry (nodes rock_lod1, colluvium_lod1, …)
 // (`rock.vdb` is written by the recipe after this stage, with `rock_sdf`.) Every file is atomic.
 #pragma once
 
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/surface_mesh.h"
 #include "core/voxel_rock.h"
@@ -19,9 +23,13 @@ namespace rockbake {
 struct SmoothedSdf;  // io/openvdb_support.h
 
 struct MeshStageResult {
-  AssetMeshes meshes;                           // subdivided, attributed, coloured
+  AssetMeshes meshes;                           // LOD0: attributed, coloured, about the pivot
+  std::vector<AssetMeshes> lods;                // LOD1, … (written with glb only)
+  std::vector<std::string> lod_files;           // LOD0, LOD1, …: the file holding each (empty: none)
   std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
-  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, export_seconds = 0;
+  std::array<double, 3> pivot{};                // footprintPivot: world position of the meshes' origin
+  std::size_t refined_triangles = 0;            // both surfaces before simplification
+  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0, export_seconds = 0;
 };
 
 // Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/png_image.h"
+#include "pipeline/asset_json.h"
 #include "pipeline/manifest.h"
 #include "render/contact_sheet.h"
 
@@ -105,14 +106,17 @@ IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::strin
         const auto run = run_status.find(name);
         const std::string status = run != run_status.end() ? run->second : "ok";
         (status == "skipped-resumed" ? counts.skipped_resumed : counts.ok) += 1;
-        bool rendered = false;
-        for (const auto& output : manifest->value("outputs", json::array()))
+        bool rendered = false, described = false;
+        for (const auto& output : manifest->value("outputs", json::array())) {
           rendered = rendered || (output.is_object() && output.value("path", "") == "render.png");
+          described = described || (output.is_object() && output.value("path", "") == kAssetFile);
+        }
         asset["status"] = status;
         asset["job"] = inputs.value("job", json(nullptr));
         asset["input_hash"] = inputs.value("input_hash", "");
         asset["manifest"] = name + "/" + kManifestFile;
         asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
+        asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
         library = inputs.value("library", json(nullptr));
         sheet.push_back({name, rendered ? dir / "render.png" : fs::path(), "no render"});
       } else if (failure_ok) {

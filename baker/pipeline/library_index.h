@@ -8,7 +8,8 @@
 //    "assets": [                                      // by name, numbers in natural order (s9 < s10)
 //      {"name", "status": "ok" | "skipped-resumed" | "failed",
 //       "job": {name, preset, wedge, wedge_set, set, seed, resolution},
-//       "input_hash", "manifest": "<name>/manifest.json", "render": "<name>/render.png" | null}
+//       "input_hash", "manifest": "<name>/manifest.json", "render": "<name>/render.png" | null,
+//       "asset": "<name>/asset.json" | null}
 //      {"name", "status": "failed", "message", "job", "failure": "<name>/failure.json"}
 //      {"name", "status": "damaged", "message"}],     // manifest.json / failure.json there but unreadable
 //    "counts": {"ok", "skipped-resumed", "failed", "damaged"},

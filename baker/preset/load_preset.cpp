@@ -524,12 +524,35 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
     m.expectMap();
     if (m.has("smoothing")) p.mesh.smoothing = m.at("smoothing").numberIn(0.0, 4.0);
     if (m.has("subdivision")) p.mesh.subdivision = int(m.at("subdivision").integer(0, 3));
+    if (m.has("max_error")) p.mesh.max_error = m.at("max_error").numberIn(0.0, 8.0, true);
     if (m.has("lods")) {
       const Field l = m.at("lods");
+      p.mesh.lods.clear();
       for (std::size_t i = 0; i < l.size(); ++i) {
-        const double ratio = l.item(i).numberIn(0.0, 1.0, true, true);
-        if (!p.mesh.lods.empty() && ratio >= p.mesh.lods.back()) l.item(i).fail("LOD ratios must decrease");
-        p.mesh.lods.push_back(ratio);
+        const Field item = l.item(i);
+        const double v = item.numberIn(0.0, 1e9, true);
+        const bool count = v >= 1.0;
+        if (count && v != std::floor(v))
+          item.fail("a LOD is a ratio in (0, 1) of LOD0's triangles or a whole triangle count, not " +
+                    fmt::format("{}", v));
+        if (!p.mesh.lods.empty() && (p.mesh.lods.back() >= 1.0) != count)
+          item.fail("mix of ratios and triangle counts", "give every LOD as a ratio or every LOD as a triangle count");
+        if (!p.mesh.lods.empty() && v >= p.mesh.lods.back())
+          item.fail(count ? "LOD triangle counts must decrease" : "LOD ratios must decrease");
+        p.mesh.lods.push_back(v);
+      }
+    }
+    if (m.has("detail")) {
+      const Field d = m.at("detail");
+      if (d.defined()) {
+        d.expectMap();
+        NoiseParams detail;
+        if (d.has("amplitude")) detail.amplitude = d.at("amplitude").numberIn(0.0, 1e6);
+        if (d.has("period")) detail.period = d.at("period").positive();
+        if (d.has("octaves")) detail.octaves = int(d.at("octaves").integer(1, 8));
+        p.mesh.detail = detail;
+      } else {
+        p.mesh.detail.reset();
       }
     }
   });
@@ -567,6 +590,18 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
         e.item(i).fail("'" + format + "' is listed twice");
       p.exports.push_back(format);
     }
+  });
+  validatePart(source, [&] {
+    if (!root.has("tags")) return;
+    const Field t = root.at("tags");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const std::string tag = t.item(i).string();
+      if (!isAssetName(tag)) t.item(i).fail("tag '" + tag + "' may only use a-z, 0-9, '_' and '-'");
+      if (std::find(p.tags.begin(), p.tags.end(), tag) == p.tags.end()) p.tags.push_back(tag);
+    }
+  });
+  validatePart(source, [&] {
+    if (root.has("units_per_meter")) p.units_per_meter = root.at("units_per_meter").numberIn(0.0, 1e6, true);
   });
   validatePart(source, [&] {
     if (!root.has("render")) return;

@@ -176,9 +176,17 @@ struct StopParams {
 
 // ---- later stages (accepted and validated now; used by the mesh and render stages) ----
 struct MeshParams {
-  double smoothing = 1.0;    // 0..4
-  int subdivision = 2;       // 0..3
-  std::vector<double> lods;  // ratios in (0, 1), decreasing
+  double smoothing = 1.0;  // 0..4
+  int subdivision = 2;     // 0..3
+  // LOD0 is the refined surface simplified until it would leave it by more than
+  // this (voxels, > 0); 0.15 is invisible in the studio still at 1920 × 1080.
+  double max_error = 0.15;
+  // LOD1, LOD2, …: all ratios in (0, 1) of LOD0's triangles, or all triangle
+  // counts (whole numbers >= 1, both surfaces together); decreasing.
+  std::vector<double> lods;
+  // Seeded roughness displaced along the refined surface's normals (world units);
+  // none when absent.
+  std::optional<NoiseParams> detail;
 };
 enum class Palette { Natural, Debug, Curvature };
 using SrgbColor = std::array<double, 3>;  // each channel in [0, 1]
@@ -228,7 +236,9 @@ struct Preset : SimParams {
   std::string name;  // [a-z0-9_-]+
   MeshParams mesh;
   BakeParams bake;
-  std::vector<std::string> exports{"ply", "obj", "glb", "vdb"};
+  std::vector<std::string> exports{"ply", "glb", "vdb"};  // "obj" on request
+  std::vector<std::string> tags;                          // asset.json's tags, each [a-z0-9_-]+
+  double units_per_meter = 1.0;                           // world units per metre (asset.json's physical size), > 0
   RenderParams render;
 
   // Where each key the file gave was written, by key path ("shape.image.path"),

@@ -153,12 +153,21 @@ json presetToJson(const Preset& p) {
   if (p.stop.time) out["time"] = *p.stop.time;
   if (p.stop.cycles) out["cycles"] = *p.stop.cycles;
   if (p.stop.rock_volume_fraction) out["until"] = {{"rock_volume_fraction", *p.stop.rock_volume_fraction}};
-  out["mesh"] = {{"smoothing", p.mesh.smoothing}, {"subdivision", p.mesh.subdivision}, {"lods", p.mesh.lods}};
+  out["mesh"] = {{"smoothing", p.mesh.smoothing},
+                 {"subdivision", p.mesh.subdivision},
+                 {"max_error", p.mesh.max_error},
+                 {"lods", p.mesh.lods}};
+  if (p.mesh.detail)
+    out["mesh"]["detail"] = {{"amplitude", p.mesh.detail->amplitude},
+                             {"period", p.mesh.detail->period},
+                             {"octaves", p.mesh.detail->octaves}};
   json layers = json::array();
   for (const auto& l : p.bake.layers) layers.push_back({{"durability", l.durability}, {"color", l.color}});
   out["bake"] = {{"palette", paletteName(p.bake.palette)}, {"layers", layers}};
   if (p.bake.colluvium_color) out["bake"]["colluvium_color"] = *p.bake.colluvium_color;
   out["export"] = p.exports;
+  out["tags"] = p.tags;
+  out["units_per_meter"] = p.units_per_meter;
   out["render"] = {{"template", p.render.template_name}, {"width", p.render.width},
                    {"height", p.render.height},          {"quality", p.render.quality},
                    {"antialias", p.render.antialias},    {"turntable", {{"frames", p.render.turntable_frames}}}};

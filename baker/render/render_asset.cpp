@@ -99,7 +99,7 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     meshes = readAssetFrame(out.mesh_include);
   }
   const CameraSetup home = frameCamera(meshes, w, h);
-  writeScene(still_template, scenePlaceholders(meshes, home, home, SceneFrame{}, "rock_mesh.inc"), out.scene);
+  writeScene(still_template, scenePlaceholders(meshes, home, home, SceneFrame{}, "rock_mesh.inc", r.seed), out.scene);
   out.seconds_scene = since(t0);
 
   auto t = Clock::now();
@@ -121,7 +121,7 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
       const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
       // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
       // relative to the working directory (the asset folder).
-      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc"), r.asset_dir / scene_rel);
+      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed), r.asset_dir / scene_rel);
       renderOne(r, threads, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
       out.turntable_frames.push_back(r.asset_dir / exr_rel);
     }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/hash.h"
 #include "preset/render_templates.h"
 
 namespace rockbake {
@@ -97,9 +98,13 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
   }
   out << "  texture_list { " << textures.size();
   for (const auto& c : textures) {
-    std::snprintf(buf, sizeof buf, ",\n    texture { pigment { rgb <%.6g, %.6g, %.6g> } finish { Rockbake_Finish } }",
-                  c[0] / 4095.0, c[1] / 4095.0, c[2] / 4095.0);
-    out << buf;
+    // The vertex colour, varied by the template's grain pattern between
+    // Rockbake_Dark and Rockbake_Light times itself, with its bump and finish.
+    char rgb[96];
+    std::snprintf(rgb, sizeof rgb, "rgb <%.6g, %.6g, %.6g>", c[0] / 4095.0, c[1] / 4095.0, c[2] / 4095.0);
+    out << ",\n    texture { pigment { pigment_pattern { " << name << "_Grain } color_map { [0 " << rgb
+        << " * Rockbake_Dark] [1 " << rgb << " * Rockbake_Light] } } normal { " << name
+        << "_Normal } finish { Rockbake_Finish } }";
   }
   out << "\n  }\n  face_indices { " << mesh.triangles.size();
   for (const auto& t : mesh.triangles) {
@@ -198,6 +203,13 @@ void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& fi
     out << "// Written by rockbake: the asset's meshes in POV-Ray's frame (world x, y, z -> <x, z, y>).\n"
         << "// World bounding box (min, max, z up) and bounding-sphere radius, for re-rendering:\n"
         << frame << "#ifndef (Rockbake_Finish)\n#declare Rockbake_Finish = finish { diffuse 0.8 }\n#end\n";
+    // The material a template may declare before the include; by default the
+    // vertex colour exactly, unbumped.
+    for (const char* surface : {"Rockbake_Rock", "Rockbake_Colluvium"})
+      out << "#ifndef (" << surface << "_Grain)\n#declare " << surface << "_Grain = pigment { rgb 0.5 }\n#end\n"
+          << "#ifndef (" << surface << "_Normal)\n#declare " << surface << "_Normal = normal { granite 0 }\n#end\n";
+    out << "#ifndef (Rockbake_Dark)\n#declare Rockbake_Dark = 1;\n#end\n"
+        << "#ifndef (Rockbake_Light)\n#declare Rockbake_Light = 1;\n#end\n";
     writeMesh2(out, meshes.rock, "Rockbake_Rock");
     if (colluvium) writeMesh2(out, meshes.colluvium, "Rockbake_Colluvium");
     out << "#declare Rockbake_Has_Colluvium = " << (colluvium ? 1 : 0) << ";\n";
@@ -206,8 +218,13 @@ void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& fi
 
 std::map<std::string, std::string> scenePlaceholders(const AssetFrame& meshes, const CameraSetup& camera,
                                                      const CameraSetup& home, const SceneFrame& frame,
-                                                     const std::string& mesh_include) {
+                                                     const std::string& mesh_include, std::uint64_t seed) {
+  // Where the template's patterns are sampled: seeded, so each rock's grain differs.
+  Vec3 offset;
+  for (int a = 0; a < 3; ++a)
+    offset[a] = std::round(1e4 * 1000.0 * unitInterval(counterHash(seed, purposeId("render-pattern"), 0, a))) / 1e4;
   return {
+      {"SEED_OFFSET", "<" + num(offset[0]) + ", " + num(offset[1]) + ", " + num(offset[2]) + ">"},
       {"MESH_INCLUDE", mesh_include},
       {"CAMERA_LOCATION", povVector(camera.location)},
       {"CAMERA_LOOK_AT", povVector(camera.look_at)},

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -61,9 +62,12 @@ CameraSetup frameCamera(const AssetMeshes& meshes, int width, int height, double
 // Writes the mesh2 include (atomically): declares Rockbake_Rock and, when there
 // is colluvium, Rockbake_Colluvium (objects), and Rockbake_Has_Colluvium (0/1).
 // Vertex colours go into a texture_list, one texture per distinct colour
-// (pigment = the linear colour rounded to 1/4096, finish = Rockbake_Finish,
-// which a template may #declare before the #include); faces carry their three
-// vertices' texture indices, so colours interpolate.
+// (the linear colour rounded to 1/4096, varied between Rockbake_Dark and
+// Rockbake_Light times itself by the pigment Rockbake_Rock_Grain /
+// Rockbake_Colluvium_Grain, bumped by Rockbake_Rock_Normal /
+// Rockbake_Colluvium_Normal, finish Rockbake_Finish; a template may #declare
+// each before the #include, the defaults give the flat colour); faces carry
+// their three vertices' texture indices, so colours interpolate.
 void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file);
 
 struct SceneFrame {
@@ -72,10 +76,11 @@ struct SceneFrame {
   double turntable_deg = 0.0;
 };
 
-// The values for every placeholder documented in render_templates/README.md.
+// The values for every placeholder documented in render_templates/README.md;
+// {{SEED_OFFSET}} derives from `seed` (the preset's).
 std::map<std::string, std::string> scenePlaceholders(const AssetFrame& asset, const CameraSetup& camera,
                                                      const CameraSetup& home_camera, const SceneFrame& frame,
-                                                     const std::string& mesh_include);
+                                                     const std::string& mesh_include, std::uint64_t seed = 0);
 
 // render_templates/<name>.pov; std::runtime_error listing the templates there
 // when it does not exist.
