@@ -189,10 +189,11 @@ using Point = std::array<float, 3>;
 // as they are, then the simplifier's damage repaired as far as it can be.
 struct Pass {
   SurfaceMesh mesh;
-  std::size_t bad_edges = 0;  // edges not shared by exactly two faces after the repair
-  std::vector<Point> torn;    // vertices of those edges
-  std::vector<Point> cut;     // pinches that cut the surface in two
-  std::vector<Point> folded;  // vertices of fold-overs and zero-area triangles the repair left
+  std::size_t bad_edges = 0;   // edges not shared by exactly two faces after the repair
+  std::vector<Point> torn;     // vertices of those edges
+  std::vector<Point> cut;      // pinches that cut the surface in two
+  std::vector<Point> folded;   // vertices of fold-overs and zero-area triangles the repair left
+  std::size_t folds_left = 0;  // how many such triangles
 };
 
 Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices, const std::vector<char>& locked,
@@ -264,6 +265,7 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
   else
     computeVertexNormals(out);
   const MeshDefects d = checkMesh(out);
+  pass.folds_left = d.fold_overs + d.zero_area;
   for (std::uint32_t v : d.open_edge_vertices) pass.torn.push_back(out.positions[v]);
   if (pass.bad_edges == 0)
     for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(out.positions[v]);
@@ -271,9 +273,8 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
 }
 
 // Locks every triangle of `m` with a vertex within `radius` of a trouble point
-// (a hash grid of the points, cells `radius` wide). Returns how many it locked.
-std::size_t lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double radius,
-                       std::vector<char>& locked) {
+// (a hash grid of the points, cells `radius` wide).
+void lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double radius, std::vector<char>& locked) {
   const auto cell = [&](const Point& p) {
     return std::array<std::int64_t, 3>{std::int64_t(std::floor(p[0] / radius)), std::int64_t(std::floor(p[1] / radius)),
                                        std::int64_t(std::floor(p[2] / radius))};
@@ -302,12 +303,10 @@ std::size_t lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, 
           }
         }
   }
-  std::size_t count = 0;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
-    if (!locked[t] && (near[tri[0]] || near[tri[1]] || near[tri[2]])) locked[t] = 1, ++count;
+    if (near[tri[0]] || near[tri[1]] || near[tri[2]]) locked[t] = 1;
   }
-  return count;
 }
 
 double meanEdgeLength(const SurfaceMesh& m) {
@@ -326,13 +325,11 @@ double meanEdgeLength(const SurfaceMesh& m) {
 // would pass `max_error` (world units), whichever comes first; `ratio` only for the log.
 // meshoptimizer does not check the link condition: a collapse can glue two
 // triangles back to back, pinch two sheets together, tear an edge open or fold
-// a triangle over. Each pass repairs what it can; where anything is left, or
-// the surface fell into more pieces than it had, the triangles around those
-// places are locked (kept as they are) and the rest simplified again, the
-// locked neighbourhood doubling each time. The cleanest pass is kept.
-SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, double ratio, double max_error = -1.0) {
-  if (given.triangles.empty()) return given;
-  const SurfaceMesh& m = given;
+// a triangle over. Each pass repairs what it can; see the loop for where
+// triangles are then locked (kept as they are) and the rest simplified again.
+// The cleanest pass is kept.
+SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio, double max_error = -1.0) {
+  if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
   const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
   std::vector<unsigned int> indices(index_count);
@@ -374,8 +371,7 @@ SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, dou
       lock_around.insert(lock_around.end(), pass.cut.begin(), pass.cut.end());
       lock_around.insert(lock_around.end(), folds.begin(), folds.end());
     }
-    const bool better = score < best_score;
-    if (better) best_score = score, best = std::move(pass);
+    if (score < best_score) best_score = score, best = std::move(pass);
     if (score == 0) break;
     if (budget && (attempt < 4 || best->bad_edges == 0)) continue;
     if (lock_around.empty()) {
@@ -388,9 +384,8 @@ SurfaceMesh simplify(const SurfaceMesh& given, std::size_t target_triangles, dou
   if (best->bad_edges > 0) {
     spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name,
                  best->bad_edges);
-  } else if (const MeshDefects d = checkMesh(best->mesh); d.fold_overs + d.zero_area > 0) {
-    spdlog::warn("LOD {} of the {} surface keeps {} folded or zero-area triangles", ratio, m.name,
-                 d.fold_overs + d.zero_area);
+  } else if (best->folds_left > 0) {
+    spdlog::warn("LOD {} of the {} surface keeps {} folded or zero-area triangles", ratio, m.name, best->folds_left);
   }
   return std::move(best->mesh);
 }
