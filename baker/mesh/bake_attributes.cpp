@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
@@ -105,19 +106,20 @@ void paint(SurfaceMesh& m, const PaletteParams& p) {
   const Rgb colluvium_color = p.colluvium_color ? srgb(float((*p.colluvium_color)[0]), float((*p.colluvium_color)[1]),
                                                        float((*p.colluvium_color)[2]))
                                                 : kSand;
-  // The preset's layers, keyed by durability, interpolated in linear light.
-  const auto layerColor = [&p](float d) {
+  // The preset's layers, keyed by durability, interpolated in linear light
+  // (converted once: an OCIO conversion per vertex cost more than the rest of the paint).
+  std::vector<Rgb> linear_layers;
+  for (const PaletteLayer& l : p.layers)
+    linear_layers.push_back(srgb(float(l.color[0]), float(l.color[1]), float(l.color[2])));
+  const auto layerColor = [&p, &linear_layers](float d) {
     const auto& layers = p.layers;
-    const auto linear = [](const PaletteLayer& l) {
-      return srgb(float(l.color[0]), float(l.color[1]), float(l.color[2]));
-    };
-    if (d <= layers.front().durability) return linear(layers.front());
+    if (d <= layers.front().durability) return linear_layers.front();
     for (std::size_t i = 1; i < layers.size(); ++i)
       if (d <= layers[i].durability) {
         const float t = float((d - layers[i - 1].durability) / (layers[i].durability - layers[i - 1].durability));
-        return lerp(linear(layers[i - 1]), linear(layers[i]), t);
+        return lerp(linear_layers[i - 1], linear_layers[i], t);
       }
-    return linear(layers.back());
+    return linear_layers.back();
   };
   const float span = std::max(p.durability_max - p.durability_min, 1e-6f);
   m.colors.resize(m.positions.size());
