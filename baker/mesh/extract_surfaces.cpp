@@ -24,6 +24,7 @@ namespace rockbake {
 namespace {
 
 constexpr int kHalfWidth = 3;         // narrow band, voxels each side
+constexpr int kPreviewHalfWidth = 2;  // enough for a width-1 Gaussian; the band's set-up costs 3 x this passes
 constexpr int kMirrorLayers = 3;      // layers mirrored below the ground before smoothing
 constexpr float kSideMargin = 0.05f;  // voxels: how far inside (outside) a sample of (not of) the material stays
 
@@ -53,10 +54,15 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
 
   // Zero crossing on the faces between occupied and empty voxels; no closing,
   // no dilation: the surface encloses exactly the voxels before smoothing.
-  openvdb::FloatGrid::Ptr sdf = openvdb::tools::topologyToLevelSet(*mask, kHalfWidth, 0, 0, 0);
+  openvdb::FloatGrid::Ptr sdf =
+      openvdb::tools::topologyToLevelSet(*mask, params.preview ? kPreviewHalfWidth : kHalfWidth, 0, 0, 0);
   const int passes = int(std::lround(std::clamp(params.smoothing, 0.0, 4.0)));
   if (passes > 0) {
     openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*sdf);
+    if (params.preview) {
+      filter.setNormCount(1);
+      filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
+    }
     for (int i = 0; i < passes; ++i) filter.gaussian(1);
     // Smoothing must not change what the rock is: every sample keeps the side
     // of its voxel (inside where the material is, outside elsewhere), so a

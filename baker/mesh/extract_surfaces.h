@@ -27,6 +27,11 @@ struct SmoothedSdf;  // io/openvdb_support.h
 
 struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)
+  // The studio's live preview: after each smoothing pass the band is
+  // renormalised once with first-order differences instead of three times
+  // with fifth-order ones (OpenVDB's default), about 4x cheaper. The surface
+  // differs from the bake's by a small fraction of a voxel; sides are kept.
+  bool preview = false;
 };
 
 // Positions (world units, z up), triangles and quads of both surfaces, no

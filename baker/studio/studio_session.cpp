@@ -355,7 +355,7 @@ std::string StudioSession::rockVdb() const {
 
 std::string StudioSession::previewMesh(PreviewPalette palette) const {
   const VoxelRock& rock = sim_->rock();
-  AssetMeshes meshes = extractSurfaces(rock, {preset_.mesh.smoothing});
+  AssetMeshes meshes = extractSurfaces(rock, {preset_.mesh.smoothing, /*preview=*/true});
   // Curvature costs a bubble count per exposed voxel: only when it is shown.
   const std::vector<float> exposure = palette == PreviewPalette::Curvature
                                           ? exposureField(rock, sim_->activeParams())
