@@ -628,5 +628,41 @@ TEST(MeshStage, BakeAssetWritesMeshesAndTimesTheStages) {
   EXPECT_FALSE(std::filesystem::exists(bare.path() / "banded" / "rock.glb"));
 }
 
+// The curvature attribute is exposure under the bubble graph in effect when
+// the simulation ended: a keyframe that changed the bubbles changes it too.
+TEST(MeshStage, CurvatureUsesTheLatestKeyframesBubbles) {
+  Preset p = bandedPreset();
+  p.name = "keyframed";
+  p.exports = {"ply"};
+  DurabilityKeyframe k;
+  k.at = 0.4;  // half-way through the 8 cycles of h = 0.1
+  std::vector<BubbleBand> smaller = p.bubbles;
+  for (BubbleBand& band : smaller) band.bubble.extents[0] *= 0.5;
+  k.bubbles = smaller;
+  p.durability.keyframes = {k};
+
+  test::TempDir dir;
+  BakeOptions options;
+  options.out_dir = dir.path();
+  options.render = false;
+  bakeAsset(p, options);
+  const ReadMesh baked = readPly(dir.path() / "keyframed" / "rock.ply");
+
+  const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
+  Preset at_end = p;
+  at_end.bubbles = smaller;
+  const SurfaceMesh expected = buildMeshes(rock, at_end).meshes.rock;
+  const SurfaceMesh base = buildMeshes(rock, p).meshes.rock;
+  ASSERT_EQ(baked.vertices.size(), expected.positions.size());
+  ASSERT_EQ(base.curvature.size(), expected.curvature.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < expected.curvature.size(); ++i) {
+    ASSERT_EQ(baked.vertices[i].curvature, expected.curvature[i]) << "vertex " << i;
+    differ += base.curvature[i] != expected.curvature[i];
+  }
+  // Not vacuous: the base graph's curvature is another attribute.
+  EXPECT_GT(differ, expected.curvature.size() / 10);
+}
+
 }  // namespace
 }  // namespace rockbake

@@ -218,6 +218,10 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
       while (next_checkpoint <= c.time + 1e-9 * g.h) next_checkpoint += every;
     }
   }
+  // The curvature attribute is the exposure under the bubble graph in effect
+  // at the end: the latest keyframe's, when one carried bubbles.
+  Preset meshing = preset;
+  meshing.bubbles = simulation->activeParams().bubbles;
   weathered.rock = simulation->release();
   stages["simulate"] = clock.lap();
   double curvature = 0, colluvium = 0, rockfall = 0;
@@ -237,7 +241,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
     stages["write_vdb"] = clock.lap();
   } else {
     progress(0.7, "mesh");
-    const MeshStageResult meshes = bakeMeshes(weathered.rock, preset, dir);
+    const MeshStageResult meshes = bakeMeshes(weathered.rock, meshing, dir);
     stages["mesh_extract"] = meshes.extract_seconds;
     stages["mesh_subdivide"] = meshes.subdivide_seconds;
     stages["mesh_attributes"] = meshes.attributes_seconds;

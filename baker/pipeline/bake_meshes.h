@@ -35,7 +35,9 @@ struct MeshStageResult {
 // Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").
 bool exportsFormat(const Preset& preset, const std::string& format);
 
-// Surfaces, attributes, subdivision and palette, in memory (no files).
+// Surfaces, attributes, subdivision and palette, in memory (no files). The
+// curvature attribute is exposure under `preset.bubbles`: pass the bubble
+// graph in effect when the simulation ended (its latest keyframe's).
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);
 
 // buildMeshes, then the files the preset's `export:` list asks for.
