@@ -4,12 +4,14 @@
 // Usage: node api_test.mjs ROCKBAKE SOURCE_DIR
 import fs from 'node:fs';
 import path from 'node:path';
+import { spawnSync } from 'node:child_process';
 import { api, bakeVdb, check, presetFolder, raw, rawPost, startStudio, stopStudio } from './harness.mjs';
 
 const [rockbake, sourceDir] = process.argv.slice(2);
 const resolution = 24;
 const dir = presetFolder(sourceDir, 6);  // 24 cycles at resolution 24
-const studio = await startStudio(rockbake, [path.join(dir, 'goblin.yaml'), '--resolution', String(resolution)]);
+const finalOut = path.join(dir, 'final');
+const studio = await startStudio(rockbake, [path.join(dir, 'goblin.yaml'), '--resolution', String(resolution), '-o', finalOut]);
 const url = studio.url;
 let passed = 0;
 let failure = null;
@@ -110,6 +112,36 @@ try {
   const mesh = await api(url, '/api/mesh?palette=curvature');
   ok(mesh.status === 200 && mesh.body.subarray(0, 4).toString() === 'RBPM' && mesh.body.readUInt32LE(12) > 100,
     'the preview mesh has the rock');
+
+  // Bake final: the normal bake of what is on screen, at the preset's own resolution, with progress.
+  const now = (await api(url, '/api/state')).json;
+  const started = await api(url, '/api/bake', {});
+  ok(started.status === 202 && started.json.asset_dir === path.join(finalOut, 'goblin'), `bake final starts (${started.status})`);
+  ok((await api(url, '/api/bake', {})).status === 409, 'a second bake final while one runs gets 409');
+  let bake = null;
+  const progress = new Set();
+  for (const deadline = Date.now() + 240000; Date.now() < deadline;) {
+    bake = (await api(url, '/api/state')).json.bake;
+    if (bake.state !== 'running') break;
+    progress.add(bake.message);
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  ok(bake.state === 'done' && bake.progress === 1, `bake final finishes (${JSON.stringify(bake)})`);
+  ok(progress.has('simulate') && progress.has('mesh'), `the page sees the bake's stages (${[...progress]})`);
+  const asset = path.join(finalOut, 'goblin');
+  for (const f of ['manifest.json', 'asset.json', 'rock.glb', 'rock.vdb', 'render.png'])
+    ok(fs.existsSync(path.join(asset, f)), `bake final writes ${f}`);
+  const manifest = JSON.parse(fs.readFileSync(path.join(asset, 'stats.json'), 'utf8'));
+  ok(manifest.preset.grid.resolution === 96 && manifest.preset.time === now.time,
+    `bake final bakes the preset's own resolution at the studio's time (${manifest.preset.grid.resolution}, ${manifest.preset.time})`);
+  // The same as the saved preset baked from the command line.
+  ok((await api(url, '/api/save', { name: 'goblin-final' })).status === 200, 'save at the bake\'s time');
+  const cli = spawnSync(rockbake, ['bake', path.join(dir, 'goblin-final.yaml'), '--no-render', '-o', path.join(dir, 'cli')],
+    { encoding: 'utf8' });
+  ok(cli.status === 0, `the saved preset bakes (${cli.stderr})`);
+  for (const f of ['rock.vdb', 'rock.glb'])
+    ok(Buffer.compare(fs.readFileSync(path.join(asset, f)), fs.readFileSync(path.join(dir, 'cli', 'goblin-final', f))) === 0,
+      `bake final's ${f} is the saved preset's, byte for byte`);
 } catch (e) {
   failure = e;
 }
