@@ -29,8 +29,9 @@ struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)
   // The studio's live preview: after each smoothing pass the band is
   // renormalised once with first-order differences instead of three times
-  // with fifth-order ones (OpenVDB's default), about 4x cheaper. The surface
-  // differs from the bake's by a small fraction of a voxel; sides are kept.
+  // with fifth-order ones (OpenVDB's default), in a two-voxel band: about 4x
+  // cheaper. Its vertices lie within half a voxel of the bake's surface (about
+  // a fiftieth on average); every voxel keeps its side, as in the bake.
   bool preview = false;
 };
 

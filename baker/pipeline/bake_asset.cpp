@@ -7,11 +7,11 @@
 #include <cstdlib>
 
 #include <chrono>
-#include <system_error>
 #include <cmath>
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <system_error>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
