@@ -30,6 +30,7 @@
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
 #include "pipeline/rerender_asset.h"
+#include "pipeline/resume_plan.h"
 #include "preset/library.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"

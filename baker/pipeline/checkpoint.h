@@ -1,6 +1,6 @@
 // Checkpoints (SPEC §5): the whole simulation state at one time, in one file
 // (`bake --checkpoint-every T` writes OUT/<name>/checkpoints/<time>.rbk), and
-// what `rockbake resume` continues from.
+// what `rockbake resume` continues from (pipeline/resume_plan.h).
 //
 // File layout (little-endian), version 1:
 //   "RBKPOINT"  u32 version  u64 header bytes  header (JSON)
@@ -14,7 +14,6 @@
 
 #include <filesystem>
 #include <string>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -45,19 +44,5 @@ void writeCheckpoint(const std::filesystem::path& file, const Checkpoint& checkp
 // Throws InputError naming the file when it cannot be read, is not a
 // checkpoint, is of another version, is truncated or fails its checksum.
 Checkpoint readCheckpoint(const std::filesystem::path& file);
-
-// `rockbake resume CHECKPOINT --set ...`: the preset a resumed bake runs.
-// The checkpoint's preset is read again (its text, its bases from disk) and
-// must still hash the same. `sets` may change durability.points,
-// durability.noise, bubbles and response — each becomes part of a keyframe at
-// the checkpoint's time, so the result is a preset that reproduces the run —
-// and colluvium, rockfall, time, cycles and until, which apply from the
-// checkpoint on. Anything else (grid, shape, seed, resolution, ...) is refused.
-// InputError (exit 2) for a refused or invalid edit, or a changed preset.
-struct ResumePlan {
-  Preset preset;
-  PresetOverrides overrides;  // what gives `preset` from the preset file: the checkpoint's, the edits, the keyframes
-};
-ResumePlan planResume(const Checkpoint& checkpoint, const std::vector<std::string>& sets);
 
 }  // namespace rockbake
