@@ -45,7 +45,7 @@ void putSpans(std::string& out, const RowSpans& spans) {
 // Reads the body after the magic, refusing to go past its end.
 class Reader {
  public:
-  Reader(const std::string& bytes, std::size_t end, const fs::path& file) : bytes_(bytes), end_(end), file_(file) {}
+  Reader(std::string_view bytes, std::size_t end, const fs::path& file) : bytes_(bytes), end_(end), file_(file) {}
   template <typename T>
   T get() {
     T value;
@@ -75,7 +75,7 @@ class Reader {
   }
   std::string getString(std::uint64_t size) {
     need(size);
-    std::string s = bytes_.substr(at_, size);
+    std::string s(bytes_.substr(at_, size));
     at_ += size;
     return s;
   }
@@ -89,7 +89,7 @@ class Reader {
   void need(std::uint64_t size) {
     if (size > end_ - at_) truncated();
   }
-  const std::string& bytes_;
+  std::string_view bytes_;
   std::size_t end_;
   std::size_t at_ = sizeof(kMagic);
   const fs::path& file_;
@@ -101,7 +101,7 @@ std::string checkpointFileName(double time) {
   return fmt::format("{:.6g}.rbk", time);
 }
 
-void writeCheckpoint(const fs::path& file, const Checkpoint& c) {
+std::string checkpointBytes(const Checkpoint& c) {
   const VoxelRock& rock = c.snapshot.rock;
   const GridLayout& g = rock.layout;
   const json header = {{"layout",
@@ -141,18 +141,17 @@ void writeCheckpoint(const fs::path& file, const Checkpoint& c) {
   put(out, std::uint64_t(c.snapshot.colluvium_columns.size()));
   putArray(out, c.snapshot.colluvium_columns);
   out += sha256Hex(out);
-  writeFileAtomically(file, out);
+  return out;
 }
 
-Checkpoint readCheckpoint(const fs::path& file) {
+void writeCheckpoint(const fs::path& file, const Checkpoint& c) {
+  writeFileAtomically(file, checkpointBytes(c));
+}
+
+Checkpoint parseCheckpoint(std::string_view bytes, const fs::path& file) {
   const auto bad = [&](const std::string& problem, const std::string& hint) {
     throw InputError({file.string()}, "", problem, hint);
   };
-  std::ifstream in(file, std::ios::binary);
-  if (!in) bad("cannot be read", "check the path (checkpoints are OUT/<name>/checkpoints/<time>.rbk)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string bytes = buffer.str();
   if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
     bad("not a rockbake checkpoint", "give a .rbk file written by `rockbake bake --checkpoint-every`");
   if (bytes.size() < sizeof(kMagic) + 4 + kDigest)
@@ -164,7 +163,7 @@ Checkpoint readCheckpoint(const fs::path& file) {
     bad("checkpoint format version " + std::to_string(version) + "; this rockbake reads version " +
             std::to_string(kCheckpointVersion),
         "resume it with the rockbake that wrote it, or bake again");
-  if (sha256Hex(std::string_view(bytes).substr(0, bytes.size() - kDigest)) != bytes.substr(bytes.size() - kDigest))
+  if (sha256Hex(bytes.substr(0, bytes.size() - kDigest)) != bytes.substr(bytes.size() - kDigest))
     bad("the checkpoint is truncated or corrupt (its checksum does not match)",
         "use another checkpoint, or bake again");
 
@@ -205,6 +204,16 @@ Checkpoint readCheckpoint(const fs::path& file) {
     bad(std::string("the checkpoint's header is unreadable: ") + e.what(), "use another checkpoint, or bake again");
   }
   return {};
+}
+
+Checkpoint readCheckpoint(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw InputError({file.string()}, "", "cannot be read",
+                     "check the path (checkpoints are OUT/<name>/checkpoints/<time>.rbk)");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parseCheckpoint(buffer.str(), file);
 }
 
 }  // namespace rockbake

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -38,11 +39,17 @@ inline constexpr std::uint32_t kCheckpointVersion = 1;
 // `<time>.rbk`, the time to 6 significant digits ("0.75.rbk").
 std::string checkpointFileName(double time);
 
+// The file's bytes.
+std::string checkpointBytes(const Checkpoint& checkpoint);
+
 // Atomic: a checkpoint being written is never mistaken for a whole one.
 void writeCheckpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
 
 // Throws InputError naming the file when it cannot be read, is not a
 // checkpoint, is of another version, is truncated or fails its checksum.
 Checkpoint readCheckpoint(const std::filesystem::path& file);
+
+// Same, from the file's bytes in memory; `file` names it in messages.
+Checkpoint parseCheckpoint(std::string_view bytes, const std::filesystem::path& file);
 
 }  // namespace rockbake
