@@ -1,14 +1,21 @@
 // Checkpoints and resume (SPEC §5), through the real executable: a resumed
 // bake equals the uninterrupted one byte for byte; an edit at the checkpoint
 // equals the same keyframe baked from the start; grid, shape, seed and
-// resolution cannot change; a truncated, corrupt or foreign file is a clear error.
+// resolution cannot change; a truncated, corrupt or foreign file is a clear error,
+// and so is one whose checksum holds but whose header does not fit its arrays.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include "core/error.h"
+#include "core/sha256.h"
+#include "pipeline/checkpoint.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -133,6 +140,105 @@ TEST(Checkpoint, TruncatedCorruptAndForeignFilesAreClearErrors) {
   EXPECT_FALSE(fs::exists(dir.path() / "c" / "small")) << "a bad checkpoint left an asset folder";
   // And the whole file still resumes.
   EXPECT_EQ(resumeOf("whole.rbk", whole).exit_status, 0);
+}
+
+// A checkpoint's parts past its checksum: what a file edited by hand (or made
+// to pass the checksum) holds.
+struct Parts {
+  nlohmann::ordered_json header;
+  std::string arrays;  // everything after the header, without the checksum
+};
+
+Parts split(const std::string& whole) {
+  std::uint64_t size = 0;
+  std::memcpy(&size, whole.data() + 12, sizeof size);
+  return {nlohmann::ordered_json::parse(whole.substr(20, size)),
+          whole.substr(20 + size, whole.size() - 64 - 20 - size)};
+}
+
+// `whole` with the header as `header_text`, the arrays as `arrays` and a valid checksum.
+std::string joined(const std::string& whole, const std::string& header_text, const std::string& arrays) {
+  std::string out = whole.substr(0, 12);
+  const std::uint64_t size = header_text.size();
+  out.append(reinterpret_cast<const char*>(&size), sizeof size);
+  out += header_text + arrays;
+  return out + sha256Hex(out);
+}
+
+std::string bakeOneCheckpoint(const TempDir& dir) {
+  const fs::path preset = writeSmall(dir);
+  const auto bake = runRockbake(
+      {"bake", preset.string(), "-o", (dir.path() / "b").string(), "--checkpoint-every", "0.25", "--no-mesh"});
+  EXPECT_EQ(bake.exit_status, 0) << bake.output;
+  return readBytes(dir.path() / "b" / "small" / "checkpoints" / "0.25.rbk");
+}
+
+// The inputs in fuzz/regressions/fuzz_checkpoint/: each passed the checksum, and was read into a
+// snapshot the simulation refused (exit 1, a message without the file), or allocated for a size the
+// file does not hold, or crashed.
+TEST(Checkpoint, AValidChecksumOverAHeaderThatDoesNotFitItsArraysIsRefused) {
+  TempDir dir;
+  const std::string whole = bakeOneCheckpoint(dir);
+  ASSERT_FALSE(whole.empty());
+  const Parts parts = split(whole);
+  const auto edited = [&](const std::function<void(nlohmann::ordered_json&)>& edit) {
+    nlohmann::ordered_json header = parts.header;
+    edit(header);
+    return joined(whole, header.dump(), parts.arrays);
+  };
+  const auto layout = [&](int nx, int ny, int nz) {
+    return edited([&](auto& h) { h["layout"]["nx"] = nx, h["layout"]["ny"] = ny, h["layout"]["nz"] = nz; });
+  };
+  const std::size_t columns = std::size_t(parts.header["layout"]["nx"]) * std::size_t(parts.header["layout"]["ny"]);
+  std::string three_columns = parts.arrays.substr(0, parts.arrays.size() - 8 - 8 * columns);
+  const std::uint64_t three = 3;
+  three_columns.append(reinterpret_cast<const char*>(&three), 8).append(24, '\0');
+  std::string bad_material = parts.arrays;
+  bad_material[8] = 7;
+  std::string preset = parts.header["preset"].dump();
+  preset.insert(1, "\"deep\": " + std::string(1000000, '[') + std::string(1000000, ']') + ",");
+  std::string deep = parts.header.dump();
+  deep.replace(deep.find(parts.header["preset"].dump()), parts.header["preset"].dump().size(), preset);
+
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      // -1 × -1 × 1 cells wrap to 1; the spans' rows to 2^64 - 1 (std::length_error).
+      {layout(-1, -1, 1), "layout.nx is -1, not a whole number from 1 to"},
+      // No cells, and 2^32 rows (16 GiB) allocated for the spans.
+      {layout(0, 1 << 30, 4), "layout.nx is 0, not a whole number"},
+      {layout(1000, 1000, 1000), "grid is 1000×1000×1000, more cells than its"},
+      // A float beyond int, cast to one (undefined behaviour).
+      {edited([](auto& h) { h["layout"]["nx"] = 1e30; }), "layout.nx is 1e+30"},
+      {edited([](auto& h) { h["overrides"]["seed"] = -1.5e300; }), "overrides.seed is -1.5e+300"},
+      {edited([](auto& h) { h["layout"]["h"] = 0; }), "layout.h is 0, not a finite positive number"},
+      // The simulation refused these at resume: "simulation snapshot: its grids do not match its layout",
+      // "colluvium accumulators: 3 columns for a grid of ...", and a JSON type error after the simulation.
+      {edited([](auto& h) { h["cycle"] = -5; }), "cycle is -5"},
+      {joined(whole, parts.header.dump(), three_columns), "colluvium accumulators are not one per column"},
+      {edited([](auto& h) { h["cycles"] = "none"; }), "cycles is not a list"},
+      {joined(whole, parts.header.dump(), bad_material), "a cell's material is 7"},
+      // Copying and printing JSON recurse: a million levels overflowed the stack.
+      {joined(whole, deep, parts.arrays), "nests deeper than 64 levels"},
+  };
+  for (const auto& [bytes, problem] : cases) {
+    try {
+      parseCheckpoint(bytes, "edited.rbk");
+      ADD_FAILURE() << "read: " << problem;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().file, "edited.rbk");
+      EXPECT_NE(e.problem().find("the checkpoint is corrupt ("), std::string::npos) << e.what();
+      EXPECT_NE(e.problem().find(problem), std::string::npos) << e.what();
+    }
+  }
+  // Through the executable: exit 2 naming the file (the deep one was a crash), and nothing written.
+  test::writeText(dir.path() / "deep.rbk", joined(whole, deep, parts.arrays));
+  const auto resumed = runRockbake({"resume", (dir.path() / "deep.rbk").string(), "-o", (dir.path() / "c").string()});
+  EXPECT_EQ(resumed.exit_status, 2) << resumed.output;
+  EXPECT_NE(resumed.output.find("deep.rbk: the checkpoint is corrupt (its header nests deeper than 64 levels)"),
+            std::string::npos)
+      << resumed.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "c"));
+  // The unedited bytes, put together the same way, still read.
+  EXPECT_NO_THROW(parseCheckpoint(joined(whole, parts.header.dump(), parts.arrays), "whole.rbk"));
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 #include "pipeline/checkpoint.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
-#include <sstream>
+#include <limits>
+#include <system_error>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -18,6 +22,9 @@ using json = nlohmann::ordered_json;  // the header keeps its keys in order
 
 constexpr char kMagic[8] = {'R', 'B', 'K', 'P', 'O', 'I', 'N', 'T'};
 constexpr std::size_t kDigest = 64;
+// The header a bake writes nests a few levels (the preset's keyframes); copying
+// or printing JSON recurses, so a deeper one is refused while it is parsed.
+constexpr int kHeaderDepth = 64;
 
 template <typename T>
 void put(std::string& out, const T& value) {
@@ -42,10 +49,15 @@ void putSpans(std::string& out, const RowSpans& spans) {
   }
 }
 
-// Reads the body after the magic, refusing to go past its end.
+[[noreturn]] void refuse(const fs::path& file, const std::string& problem) {
+  throw InputError({file.string()}, "", problem, "use another checkpoint, or bake again");
+}
+
+// Reads the body after the magic, refusing to go past its end: every count is
+// checked against the bytes left before anything is allocated for it.
 class Reader {
  public:
-  Reader(std::string_view bytes, std::size_t end, const fs::path& file) : bytes_(bytes), end_(end), file_(file) {}
+  Reader(std::string_view bytes, const fs::path& file) : bytes_(bytes), file_(file) {}
   template <typename T>
   T get() {
     T value;
@@ -56,44 +68,113 @@ class Reader {
   }
   template <typename T>
   std::vector<T> getArray(std::uint64_t count) {
-    if (count > (end_ - at_) / sizeof(T)) truncated();
+    if (count > left() / sizeof(T)) truncated();
     std::vector<T> values(count);
-    std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));
+    if (count > 0) std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));
     at_ += count * sizeof(T);
     return values;
   }
+  // The layout's rows are checked against the bytes left (each row takes at
+  // least 8) before RowSpans allocates them.
   RowSpans getSpans(const GridLayout& g) {
-    RowSpans spans(g, get<float>());
+    const float fill = get<float>();
+    if (std::uint64_t(g.ny) * std::uint64_t(g.nz) > left() / 8) truncated();
+    RowSpans spans(g, fill);
     for (std::size_t row = 0; row < spans.values.size(); ++row) {
       spans.first[row] = get<std::int32_t>();
       const auto count = get<std::uint32_t>();
       if (count > std::uint32_t(g.nx) || spans.first[row] < 0 || spans.first[row] + std::int64_t(count) > g.nx)
-        truncated();
+        refuse(file_, "the checkpoint is corrupt (a row of its spans lies outside its grid)");
       spans.values[row] = getArray<float>(count);
     }
     return spans;
   }
-  std::string getString(std::uint64_t size) {
+  std::string_view getText(std::uint64_t size) {
     need(size);
-    std::string s(bytes_.substr(at_, size));
+    const std::string_view s = bytes_.substr(at_, size);
     at_ += size;
     return s;
   }
-  std::size_t at() const { return at_; }
+  std::size_t left() const { return bytes_.size() - at_; }
   [[noreturn]] void truncated() const {
-    throw InputError({file_.string()}, "", "the checkpoint is truncated or corrupt (its sections run past its end)",
-                     "use another checkpoint, or bake again");
+    refuse(file_, "the checkpoint is truncated or corrupt (its sections run past its end)");
   }
 
  private:
   void need(std::uint64_t size) {
-    if (size > end_ - at_) truncated();
+    if (size > left()) truncated();
   }
-  std::string_view bytes_;
-  std::size_t end_;
+  std::string_view bytes_;  // without the checksum
   std::size_t at_ = sizeof(kMagic);
   const fs::path& file_;
 };
+
+// The header's values, each checked for its type and range: a checkpoint that
+// reads can start a simulation.
+class HeaderReader {
+ public:
+  explicit HeaderReader(const fs::path& file) : file_(file) {}
+
+  json parse(std::string_view text) const {
+    const json::parser_callback_t depth = [&](int level, json::parse_event_t, json&) {
+      if (level > kHeaderDepth) corrupt(fmt::format("its header nests deeper than {} levels", kHeaderDepth));
+      return true;
+    };
+    return json::parse(text.begin(), text.end(), depth);
+  }
+
+  // A whole number in [lo, hi]; `name` is its key path in the header.
+  template <typename T>
+  T integer(const json& value, std::string_view name, T lo = std::numeric_limits<T>::min(),
+            T hi = std::numeric_limits<T>::max()) const {
+    const auto within = [&](auto x) { return std::cmp_greater_equal(x, lo) && std::cmp_less_equal(x, hi); };
+    if (value.is_number_unsigned() && within(value.get<std::uint64_t>())) return T(value.get<std::uint64_t>());
+    if (value.is_number_integer() && !value.is_number_unsigned() && within(value.get<std::int64_t>()))
+      return T(value.get<std::int64_t>());
+    corrupt(fmt::format("its header's {} is {}, not a whole number from {} to {}", name, shown(value), lo, hi));
+  }
+
+  // A finite number, above 0 when `positive`.
+  double number(const json& value, std::string_view name, bool positive) const {
+    if (!value.is_number() || !std::isfinite(value.get<double>()) || (positive && !(value.get<double>() > 0)))
+      corrupt(
+          fmt::format("its header's {} is {}, not a finite{} number", name, shown(value), positive ? " positive" : ""));
+    return value.get<double>();
+  }
+
+  [[noreturn]] void corrupt(const std::string& what) const {
+    refuse(file_, "the checkpoint is corrupt (" + what + ")");
+  }
+
+ private:
+  // A value as messages show it: its JSON, cut short.
+  static std::string shown(const json& value) {
+    const std::string text = value.dump(-1, ' ', true);  // ASCII: cut anywhere, it stays valid
+    return text.size() <= 40 ? text : text.substr(0, 40) + "…";
+  }
+  const fs::path& file_;
+};
+
+// The grid from the header: a real one, whose cells the bytes left can hold
+// (a byte of material each), so that nothing sized by it is out of reach.
+GridLayout readLayout(const json& l, const HeaderReader& h, std::uint64_t bytes_left) {
+  GridLayout g;
+  const int most = int(std::clamp<std::uint64_t>(bytes_left, 1, std::numeric_limits<int>::max()));
+  g.nx = h.integer<int>(l.at("nx"), "layout.nx", 1, most);
+  g.ny = h.integer<int>(l.at("ny"), "layout.ny", 1, most);
+  g.nz = h.integer<int>(l.at("nz"), "layout.nz", 1, most);
+  const std::uint64_t columns = std::uint64_t(g.nx) * std::uint64_t(g.ny);  // below 2^62: cannot wrap
+  if (columns > bytes_left || std::uint64_t(g.nz) > bytes_left / columns)
+    h.corrupt(fmt::format("its grid is {}×{}×{}, more cells than its {} bytes hold", g.nx, g.ny, g.nz, bytes_left));
+  g.margin = h.integer<int>(l.at("margin"), "layout.margin", 0, std::min({(g.nx - 1) / 2, (g.ny - 1) / 2, g.nz - 1}));
+  g.h = h.number(l.at("h"), "layout.h", true);
+  const json& origin = l.at("origin");
+  if (!origin.is_array() || origin.size() != 3) h.corrupt("its header's layout.origin is not three numbers");
+  for (std::size_t i = 0; i < 3; ++i) g.origin[i] = h.number(origin[i], "layout.origin", false);
+  g.domain_height = h.number(l.at("domain_height"), "layout.domain_height", true);
+  g.ground = l.at("ground").get<bool>();
+  return g;
+}
 
 }  // namespace
 
@@ -157,63 +238,73 @@ Checkpoint parseCheckpoint(std::string_view bytes, const fs::path& file) {
   if (bytes.size() < sizeof(kMagic) + 4 + kDigest)
     bad("the checkpoint is truncated (" + std::to_string(bytes.size()) + " bytes)",
         "use another checkpoint, or bake again");
-  Reader reader(bytes, bytes.size() - kDigest, file);
+  const std::string_view body = bytes.substr(0, bytes.size() - kDigest);
+  Reader reader(body, file);
   const auto version = reader.get<std::uint32_t>();
   if (version != kCheckpointVersion)
     bad("checkpoint format version " + std::to_string(version) + "; this rockbake reads version " +
             std::to_string(kCheckpointVersion),
         "resume it with the rockbake that wrote it, or bake again");
-  if (sha256Hex(bytes.substr(0, bytes.size() - kDigest)) != bytes.substr(bytes.size() - kDigest))
+  if (sha256Hex(body) != bytes.substr(body.size()))
     bad("the checkpoint is truncated or corrupt (its checksum does not match)",
         "use another checkpoint, or bake again");
 
-  json header;
+  const HeaderReader h(file);
   try {
-    header = json::parse(reader.getString(reader.get<std::uint64_t>()));
+    const json header = h.parse(reader.getText(reader.get<std::uint64_t>()));
     Checkpoint c;
     GridLayout& g = c.snapshot.rock.layout;
-    const json& l = header.at("layout");
-    g.nx = l.at("nx"), g.ny = l.at("ny"), g.nz = l.at("nz"), g.margin = l.at("margin");
-    g.h = l.at("h"), g.origin = l.at("origin"), g.domain_height = l.at("domain_height"), g.ground = l.at("ground");
-    c.snapshot.cycle = header.at("cycle");
-    c.snapshot.initial_rock = header.at("initial_rock");
+    g = readLayout(header.at("layout"), h, reader.left());
+    const std::uint64_t cells = g.cellCount();
+    c.snapshot.cycle = h.integer<int>(header.at("cycle"), "cycle", 0);
+    c.snapshot.initial_rock = h.integer<std::size_t>(header.at("initial_rock"), "initial_rock", 0, cells);
     c.preset_file = header.at("preset_file").get<std::string>();
-    c.preset_text = header.at("preset_text");
+    c.preset_text = header.at("preset_text").get<std::string>();
     const json& o = header.at("overrides");
     c.overrides.sets = o.at("sets").get<std::vector<std::string>>();
     c.overrides.set_origins = o.at("set_origins").get<std::vector<std::string>>();
-    if (!o.at("seed").is_null()) c.overrides.seed = o.at("seed").get<std::uint64_t>();
-    if (!o.at("resolution").is_null()) c.overrides.resolution = o.at("resolution").get<int>();
+    if (!o.at("seed").is_null()) c.overrides.seed = h.integer<std::uint64_t>(o.at("seed"), "overrides.seed");
+    if (!o.at("resolution").is_null())
+      c.overrides.resolution = h.integer<int>(o.at("resolution"), "overrides.resolution");
     c.preset = nlohmann::json::parse(header.at("preset").dump());
-    c.preset_hash = header.at("preset_hash");
+    c.preset_hash = header.at("preset_hash").get<std::string>();
     c.cycles = header.at("cycles");
-    const auto cells = reader.get<std::uint64_t>();
-    if (cells != g.cellCount()) reader.truncated();
+    if (!c.cycles.is_array()) h.corrupt("its header's cycles is not a list");
+
+    if (reader.get<std::uint64_t>() != cells) h.corrupt("its materials are not one per cell of its grid");
     c.snapshot.rock.material = reader.getArray<Material>(cells);
+    for (Material m : c.snapshot.rock.material)
+      if (m != Material::Air && m != Material::Rock && m != Material::Colluvium)
+        h.corrupt(fmt::format("a cell's material is {}", int(m)));
     c.snapshot.rock.integrity = reader.getSpans(g);
     c.snapshot.rock.durability = reader.getSpans(g);
     const auto rind_cells = reader.get<std::uint64_t>();
-    if (rind_cells != 0 && rind_cells != cells) reader.truncated();
+    if (rind_cells != 0 && rind_cells != cells) h.corrupt("its rind is neither empty nor one per cell of its grid");
     c.snapshot.rock.rind = reader.getArray<std::uint8_t>(rind_cells);
-    c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(reader.get<std::uint64_t>());
-    if (reader.at() != bytes.size() - kDigest) reader.truncated();
-    for (Material m : c.snapshot.rock.material)
-      if (m != Material::Air && m != Material::Rock && m != Material::Colluvium) reader.truncated();
+    if (reader.get<std::uint64_t>() != std::uint64_t(g.nx) * std::uint64_t(g.ny))
+      h.corrupt("its colluvium accumulators are not one per column of its grid");
+    c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(std::uint64_t(g.nx) * std::uint64_t(g.ny));
+    if (reader.left() != 0) reader.truncated();
     return c;
   } catch (const json::exception& e) {
-    bad(std::string("the checkpoint's header is unreadable: ") + e.what(), "use another checkpoint, or bake again");
+    refuse(file, std::string("the checkpoint's header is unreadable: ") + e.what());
   }
-  return {};
 }
 
 Checkpoint readCheckpoint(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    throw InputError({file.string()}, "", "cannot be read",
+  const auto unreadable = [&](const std::string& problem) {
+    throw InputError({file.string()}, "", problem,
                      "check the path (checkpoints are OUT/<name>/checkpoints/<time>.rbk)");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parseCheckpoint(buffer.str(), file);
+  };
+  std::error_code error;
+  if (!fs::is_regular_file(file, error)) unreadable(fs::exists(file, error) ? "is not a file" : "cannot be read");
+  std::ifstream in(file, std::ios::binary);
+  const auto size = fs::file_size(file, error);
+  if (!in || error) unreadable("cannot be read");
+  std::string bytes(size, '\0');
+  if (!in.read(bytes.data(), std::streamsize(size)) || in.peek() != std::ifstream::traits_type::eof())
+    unreadable("cannot be read (it changed while it was read)");
+  return parseCheckpoint(bytes, file);
 }
 
 }  // namespace rockbake
