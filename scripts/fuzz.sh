@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-30}"
 fuzz_seed="${FUZZ_SEED:-1}"
 shift || true
-all=(fuzz_preset fuzz_set fuzz_library fuzz_png fuzz_mesh)
+all=(fuzz_preset fuzz_set fuzz_library fuzz_png fuzz_mesh fuzz_checkpoint)
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=("${all[@]}")
 
@@ -45,6 +45,11 @@ mkdir -p "$corpus_root/fuzz_mesh"
 for obj in presets/shapes/*.obj; do  # the mesh target's first byte picks the format: 0 = OBJ
   { printf '\0'; cat "$obj"; } > "$corpus_root/fuzz_mesh/$(basename "$obj").bin"
 done
+mkdir -p "$corpus_root/fuzz_checkpoint"
+for rbk in fuzz/seeds/checkpoint/*.rbk; do  # first byte 0: the whole file; 1: without its checksum, appended by the target
+  { printf '\0'; cat "$rbk"; } > "$corpus_root/fuzz_checkpoint/$(basename "$rbk").whole"
+  { printf '\1'; head -c -64 "$rbk"; } > "$corpus_root/fuzz_checkpoint/$(basename "$rbk").body"
+done
 
 mkdir -p build-fuzz/findings
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
@@ -65,9 +70,11 @@ for target in "${targets[@]}"; do
   fi
   # -malloc_limit_mb: no single allocation may exceed 256 MiB (a header claiming a huge size must be refused
   # before allocating); -timeout: no input may run away.
+  max_len=8192
+  [ "$target" = fuzz_checkpoint ] && max_len=16384  # its seeds, real checkpoints of small grids, are about 10 KB
   set +e
   "$binary" "$corpus_root/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -malloc_limit_mb=256 -max_len=8192 -seed="$fuzz_seed" -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$target-" \
+    -malloc_limit_mb=256 -max_len="$max_len" -seed="$fuzz_seed" -print_final_stats=1 -artifact_prefix="build-fuzz/findings/$target-" \
     > "$log" 2>&1
   rc=$?
   set -e
