@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/library_progress.h"
+#include "core/abnormal_exit.h"
 #include "core/error.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
@@ -36,7 +37,6 @@
 #include "preset/preset_json.h"
 #include "preset/render_templates.h"
 #include "render/render_asset.h"
-#include "sim/grid_layout.h"
 #include "studio/studio_server.h"
 
 namespace {
@@ -48,10 +48,7 @@ constexpr int kExitInterrupted = 130;  // 128 + SIGINT, as shells report Ctrl-C
 
 // What to say when memory runs out while `preset` is being baked (nullptr: while reading inputs).
 std::string outOfMemoryMessage(const rockbake::Preset* preset) {
-  if (!preset) return "out of memory while reading the inputs";
-  const std::uint64_t needed = rockbake::estimateSimulationBytes(rockbake::computeGridLayout(*preset));
-  return fmt::format("out of memory: lower grid.resolution ({} needs about {} MiB for the simulation alone)",
-                     preset->grid.resolution, needed >> 20);
+  return preset ? rockbake::outOfMemoryMessage(*preset) : "out of memory while reading the inputs";
 }
 
 // --seed: a whole number from 0 to 2^64 - 1, written as digits (CLI11 would wrap "-1" to 2^64 - 1).
@@ -322,6 +319,7 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rockbake::installAbnormalExitHandler();
   auto logger = spdlog::stderr_color_mt("rockbake");
   logger->set_pattern("%^%l%$: %v");
   spdlog::set_default_logger(logger);

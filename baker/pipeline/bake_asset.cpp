@@ -17,6 +17,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "core/abnormal_exit.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
@@ -39,10 +40,13 @@ namespace {
 // the previous complete asset, or nothing (not even OUT, when the bake created it).
 class StagingFolder {
  public:
-  explicit StagingFolder(const std::filesystem::path& asset_dir)
+  // `out_of_memory`: what to say should the process end without unwinding (core/abnormal_exit.h), which
+  // removes the folder then too.
+  StagingFolder(const std::filesystem::path& asset_dir, const std::string& out_of_memory)
       : final_(asset_dir),
         staging_(hidden(asset_dir, "baking")),
-        created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())) {
+        created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())),
+        on_abnormal_exit_(staging_, out_of_memory, created_out_) {
     removeStale(asset_dir);
     std::filesystem::remove_all(staging_);
     std::filesystem::create_directories(staging_);
@@ -101,6 +105,7 @@ class StagingFolder {
   std::filesystem::path final_, staging_;
   bool created_out_ = false;
   bool committed_ = false;
+  OnAbnormalExit on_abnormal_exit_;
 };
 
 std::string readTextFile(const std::filesystem::path& file) {
@@ -139,7 +144,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   nlohmann::ordered_json stages;
   stages["load"] = options.load_seconds;
   Stopwatch clock;
-  StagingFolder staging(summary.asset_dir);
+  StagingFolder staging(summary.asset_dir, outOfMemoryMessage(preset));
   const std::filesystem::path& dir = staging.path();
   const AssetFolderSnapshot before = beginAssetFolder(dir);
   const auto progress = [&](double fraction, const char* stage) {

@@ -14,7 +14,7 @@
 #include "pipeline/bake_asset.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
-#include "sim/grid_layout.h"
+#include "pipeline/read_inputs.h"
 
 namespace rockbake {
 namespace {
@@ -74,9 +74,7 @@ LibraryBakeResult bakeLibrary(const Library& library, const std::vector<LibraryJ
     std::string out_of_memory = "out of memory while reading the job's inputs";
     try {
       Preset preset = loadPreset(entry.preset_file, overrides);
-      out_of_memory =
-          fmt::format("out of memory: lower grid.resolution ({} needs about {} MiB for the simulation alone)",
-                      preset.grid.resolution, estimateSimulationBytes(computeGridLayout(preset)) >> 20);
+      out_of_memory = outOfMemoryMessage(preset);
       preset.name = job.name;  // the asset is the job: OUT/<job>/, and the name in its headers
       const double load_seconds = seconds();
       if (isCompleteAsset(asset_dir, bakeInputHash(preset, options.mesh, options.render, base_dir))) {

@@ -15,7 +15,7 @@ namespace rockbake {
 
 void checkGridFitsInMemory(const Preset& preset) {
   const GridLayout layout = computeGridLayout(preset);
-  const std::uint64_t needed = estimateSimulationBytes(layout);
+  const std::uint64_t needed = estimateSimulationBytes(preset);
   std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
   // A limit on this process (ulimit -v, a batch system's) counts as the machine's memory.
   struct rlimit limit {};
@@ -26,6 +26,11 @@ void checkGridFitsInMemory(const Preset& preset) {
                      fmt::format("a {}×{}×{} grid needs about {} MiB; this machine (or process) has {} MiB", layout.nx,
                                  layout.ny, layout.nz, needed >> 20, physical >> 20),
                      "lower grid.resolution (or --resolution)");
+}
+
+std::string outOfMemoryMessage(const Preset& preset) {
+  return fmt::format("out of memory: lower grid.resolution ({} needs about {} MiB for the simulation alone)",
+                     preset.grid.resolution, estimateSimulationBytes(preset) >> 20);
 }
 
 ResolvedShape readInputs(const Preset& preset) {

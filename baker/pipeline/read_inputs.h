@@ -4,6 +4,8 @@
 // same checks, so a preset lint calls ok does not fail here.
 #pragma once
 
+#include <string>
+
 #include "inputs/resolve_shape.h"
 #include "preset/preset.h"
 
@@ -15,5 +17,11 @@ ResolvedShape readInputs(const Preset& preset);
 
 // The memory check alone.
 void checkGridFitsInMemory(const Preset& preset);
+
+// What to say when memory runs out while `preset` bakes all the same (the
+// estimate is the simulation's; meshing and libraries take more):
+// "out of memory: lower grid.resolution (N needs about X MiB for the
+// simulation alone)".
+std::string outOfMemoryMessage(const Preset& preset);
 
 }  // namespace rockbake
