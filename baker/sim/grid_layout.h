@@ -20,4 +20,12 @@ GridLayout computeGridLayout(const SimParams& params);
 // machine's memory before allocating.
 std::uint64_t estimateSimulationBytes(const GridLayout& layout);
 
+// The same for a preset's parameters, with what the start adds: the signed
+// distance fields of shape.variation and durability.rind (OpenVDB level sets
+// over a band as wide as the variation's amplitude or the rind's depth about
+// the boundary: about 80 bytes a cell in the band (75 measured, rounded-cobble at 200); the band is taken
+// as twice the domain's outer faces deep, at most the whole grid). This is the
+// figure the memory guard and the out-of-memory message use.
+std::uint64_t estimateSimulationBytes(const SimParams& params);
+
 }  // namespace rockbake
