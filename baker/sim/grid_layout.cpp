@@ -57,7 +57,7 @@ std::uint64_t estimateSimulationBytes(const SimParams& params) {
     const auto inner = [&](int n, int sides) { return std::uint64_t(std::max(1, n - sides * layout.margin)); };
     const std::uint64_t x = inner(layout.nx, 2), y = inner(layout.ny, 2), z = inner(layout.nz, 1);
     const std::uint64_t faces = 2 * (x * y + x * z + y * z);
-    distance_field = std::min<std::uint64_t>(layout.cellCount(), 2 * faces * 2 * band) * 80;
+    distance_field = std::min<std::uint64_t>(layout.cellCount(), faces * 2 * band) * 80;
   }
   return estimateSimulationBytes(layout) + distance_field;
 }
