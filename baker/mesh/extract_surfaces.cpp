@@ -161,9 +161,11 @@ void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field_ptr, bool grou
   const openvdb::FloatGrid& grid = *field.grid;
   const double h = grid.voxelSize()[0];
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096), [&](const auto& range) {
-    // One accessor-backed sampler per task: samplers are not thread-safe.
-    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(
-        grid.getConstAccessor(), grid.transform());
+    // One accessor-backed sampler per task: samplers are not thread-safe. The
+    // sampler keeps a reference to the accessor, so the accessor must outlive it.
+    const openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
+    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(accessor,
+                                                                                                      grid.transform());
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       auto& p = mesh.positions[i];
       if (ground && p[2] == 0.0f) continue;
