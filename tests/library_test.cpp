@@ -438,7 +438,8 @@ TEST(Library, ReRunBakesOnlyWhatIsMissing) {
   // An input that changes the outputs (here --set) makes every job bake again.
   const auto changed = runRockbake({"library", lib.string(), "-o", out.string(), "--no-mesh", "--set", "time=0.25"});
   ASSERT_EQ(changed.exit_status, 0) << changed.output;
-  for (const auto& asset : readJson(out / "index.json")["assets"]) EXPECT_EQ(asset["status"], "ok");
+  const auto rebaked_index = readJson(out / "index.json");  // a named value: a range-for keeps no temporary alive
+  for (const auto& asset : rebaked_index["assets"]) EXPECT_EQ(asset["status"], "ok");
   EXPECT_EQ(readJson(out / "small-s1" / kManifestFile)["stats"]["cycles"], 3);
 }
 
