@@ -32,12 +32,19 @@ constexpr std::size_t kReserveBytes = std::size_t(4) << 20;
 
 // write(2) straight to stderr: nothing allocates, and nothing is buffered in a
 // stream that _Exit would not flush.
-void say(std::string_view text) {
+void writeStderr(std::string_view text) {
   while (!text.empty()) {
     const ssize_t n = ::write(STDERR_FILENO, text.data(), text.size());
     if (n <= 0) return;
     text.remove_prefix(std::size_t(n));
   }
+}
+
+// One line, as the logger prints an error.
+void sayError(std::string_view message) {
+  writeStderr("error: ");
+  writeStderr(message);
+  writeStderr("\n");
 }
 
 [[noreturn]] void onTerminate() {
@@ -64,9 +71,7 @@ void say(std::string_view text) {
   if (locked) {
     for (const auto& [id, entry] : registry) {
       if (out_of_memory && !entry.out_of_memory.empty()) {
-        say("error: ");
-        say(entry.out_of_memory);
-        say("\n");
+        sayError(entry.out_of_memory);
         said = true;
       }
       std::error_code ignored;
@@ -77,11 +82,7 @@ void say(std::string_view text) {
       }
     }
   }
-  if (!said) {
-    say("error: ");
-    say(out_of_memory ? "out of memory" : what);
-    say("\n");
-  }
+  if (!said) sayError(out_of_memory ? "out of memory" : what);
   std::_Exit(1);
 }
 

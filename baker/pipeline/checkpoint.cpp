@@ -281,9 +281,10 @@ Checkpoint parseCheckpoint(std::string_view bytes, const fs::path& file) {
     const auto rind_cells = reader.get<std::uint64_t>();
     if (rind_cells != 0 && rind_cells != cells) h.corrupt("its rind is neither empty nor one per cell of its grid");
     c.snapshot.rock.rind = reader.getArray<std::uint8_t>(rind_cells);
-    if (reader.get<std::uint64_t>() != std::uint64_t(g.nx) * std::uint64_t(g.ny))
+    const std::uint64_t columns = std::uint64_t(g.nx) * std::uint64_t(g.ny);
+    if (reader.get<std::uint64_t>() != columns)
       h.corrupt("its colluvium accumulators are not one per column of its grid");
-    c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(std::uint64_t(g.nx) * std::uint64_t(g.ny));
+    c.snapshot.colluvium_columns = reader.getArray<std::int64_t>(columns);
     if (reader.left() != 0) reader.truncated();
     return c;
   } catch (const json::exception& e) {
