@@ -37,7 +37,9 @@ struct FieldError {
   double mean = 0, max = 0;  // |phi| at the mesh's vertices, in voxels
 };
 
-FieldError fieldAtVertices(const openvdb::FloatGrid& sdf, const TriangleMesh& mesh, double h) {
+// `Mesh`: a TriangleMesh read back from a file, or a SurfaceMesh in memory.
+template <typename Mesh>
+FieldError fieldAtVertices(const openvdb::FloatGrid& sdf, const Mesh& mesh, double h) {
   openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(sdf);
   FieldError e;
   for (const auto& p : mesh.positions) {
@@ -48,17 +50,23 @@ FieldError fieldAtVertices(const openvdb::FloatGrid& sdf, const TriangleMesh& me
   return e;
 }
 
-TEST(MeshSdf, RockVdbCarriesTheFieldTheMeshWasExtractedFrom) {
-  // A weathered box on the ground, smoothed twice: the smoothed surface sits
-  // well away from the voxel faces at edges and corners.
+// A 2.4-unit box on the ground of a 4 x 4 x 3 domain, weathered for `cycles`.
+Preset boxOnTheGround(int resolution, int cycles) {
   Preset p = test::cubePreset(3.0, 30, 0.3);
-  p.name = "sdf";
   p.grid.size = {4.0, 4.0, 3.0};
-  p.grid.resolution = 40;
+  p.grid.resolution = resolution;
   p.grid.ground = true;
   p.shape.kind = BoxShape{{2.4, 2.4, 2.4}};
   p.shape.center.reset();
-  p.stop.cycles = 6;
+  p.stop.cycles = cycles;
+  return p;
+}
+
+TEST(MeshSdf, RockVdbCarriesTheFieldTheMeshWasExtractedFrom) {
+  // A weathered box on the ground, smoothed twice: the smoothed surface sits
+  // well away from the voxel faces at edges and corners.
+  Preset p = boxOnTheGround(40, 6);
+  p.name = "sdf";
   p.mesh.smoothing = 2.0;
   p.mesh.subdivision = 0;   // the exported vertices are the extracted ones
   p.mesh.max_error = 1e-4;  // LOD0 keeps (nearly) all of them
@@ -97,20 +105,8 @@ TEST(MeshSdf, RockVdbCarriesTheFieldTheMeshWasExtractedFrom) {
 // The studio's cheaper preview extraction (ExtractParams::preview) stays
 // within half a voxel of the bake's surface (a fiftieth on average), closed,
 // on a weathered rock.
-TriangleMesh vertices(const SurfaceMesh& m) {
-  TriangleMesh t;
-  for (const auto& p : m.positions) t.positions.push_back({p[0], p[1], p[2]});
-  return t;
-}
-
 TEST(MeshSdf, PreviewExtractionFollowsTheBakesSurface) {
-  Preset p = test::cubePreset(3.0, 30, 0.3);
-  p.grid.size = {4.0, 4.0, 3.0};
-  p.grid.resolution = 48;
-  p.grid.ground = true;
-  p.shape.kind = BoxShape{{2.4, 2.4, 2.4}};
-  p.shape.center.reset();
-  p.stop.cycles = 10;
+  const Preset p = boxOnTheGround(48, 10);
   const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
   const double h = rock.layout.h;
   for (double smoothing : {1.0, 2.0}) {
@@ -119,7 +115,7 @@ TEST(MeshSdf, PreviewExtractionFollowsTheBakesSurface) {
     const AssetMeshes preview = extractSurfaces(rock, {smoothing, true});
     ASSERT_TRUE(bake_field);
     EXPECT_TRUE(findOpenEdges(preview.rock).empty()) << "smoothing " << smoothing;
-    const FieldError e = fieldAtVertices(*bake_field->grid, vertices(preview.rock), h);
+    const FieldError e = fieldAtVertices(*bake_field->grid, preview.rock, h);
     EXPECT_LT(e.mean, 0.05) << "smoothing " << smoothing;
     EXPECT_LT(e.max, 0.5) << "smoothing " << smoothing;
     std::printf("preview against bake, smoothing %.0f: mean %.3f, max %.3f voxels\n", smoothing, e.mean, e.max);
