@@ -11,8 +11,11 @@
 #include <stdexcept>
 #include <string>
 
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
 #include "core/abnormal_exit.h"
-#include "sim/distance_field.h"
+#include "core/openvdb_support.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -63,14 +66,9 @@ TEST(AbnormalExitDeathTest, OpenVdbOutOfMemorySaysTheSentenceRemovesTheFolderAnd
   const fs::path dir = testFolder();
   const fs::path out = dir / "out";
   const fs::path staging = stagingIn(out);
-  // A sphere in a 256³ grid, its distance wanted 60 voxels about its boundary: about a gigabyte.
-  GridLayout g;
-  g.nx = g.ny = g.nz = 256;
-  g.h = 1.0 / 256;
-  std::vector<std::uint8_t> inside(g.cellCount());
-  for (int z = 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) inside[g.index(x, y, z)] = std::hypot(x - 128.0, y - 128.0, z - 128.0) < 90.0;
+  // A level-set sphere of radius 200 voxels, 100 voxels either side of its
+  // surface: about a gigabyte, built by OpenVDB's own parallel tasks.
+  initializeOpenVdb();
   EXPECT_EXIT(
       {
         installAbnormalExitHandler();
@@ -78,7 +76,9 @@ TEST(AbnormalExitDeathTest, OpenVdbOutOfMemorySaysTheSentenceRemovesTheFolderAnd
         limitAddressSpaceTo((addressSpaceKib() << 10) + (std::uint64_t(160) << 20));
         // Whether OpenVDB ends in std::terminate itself or its std::bad_alloc reaches this noexcept
         // boundary, the end is the same: std::terminate.
-        [&]() noexcept { signedDistance(inside, g, 60 * g.h); }();
+        []() noexcept {
+          openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(200.f, openvdb::Vec3f(0.f), 1.f, 100.f);
+        }();
         std::_Exit(0);  // not reached: the limit is far below what it needs
       },
       testing::ExitedWithCode(1), "^error: out of memory: lower grid.resolution \\(256 needs about 1 MiB\\)\n$");

@@ -209,12 +209,12 @@ std::vector<std::uint8_t> rindCoverage(const VoxelRock& rock, double depth) {
   const GridLayout& g = rock.layout;
   std::vector<std::uint8_t> inside(g.cellCount());
   for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = rock.material[i] == Material::Rock;
-  const std::vector<float> distance = signedDistance(inside, g, depth + g.h);
+  const SignedDistanceField distance = signedDistance(inside, g, depth + g.h);
   std::vector<std::uint8_t> coverage(g.cellCount(), 0);
   tbb::parallel_for(std::size_t(0), coverage.size(), [&](std::size_t i) {
     if (!inside[i]) return;
     // The voxel spans depths [d - h/2, d + h/2] below the surface.
-    const double d = -double(distance[i]);
+    const double d = -distance[i];
     const double part = std::clamp((depth - (d - g.h / 2)) / g.h, 0.0, 1.0);
     coverage[i] = std::uint8_t(std::lround(part * 255.0));
   });

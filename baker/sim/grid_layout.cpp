@@ -1,6 +1,7 @@
 #include "sim/grid_layout.h"
 
 #include "sim/bubble.h"
+#include "sim/distance_field.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,14 +52,7 @@ std::uint64_t estimateSimulationBytes(const SimParams& params) {
   if (params.shape.variation && params.shape.variation->amplitude > 0)
     reach = params.shape.variation->amplitude + 2 * layout.h;
   if (params.durability.rind) reach = std::max(reach, params.durability.rind->depth + layout.h);
-  std::uint64_t distance_field = 0;
-  if (reach > 0) {
-    const std::uint64_t band = std::uint64_t(std::ceil(reach / layout.h)) + 2;  // signedDistance's dilation, both sides
-    const auto inner = [&](int n, int sides) { return std::uint64_t(std::max(1, n - sides * layout.margin)); };
-    const std::uint64_t x = inner(layout.nx, 2), y = inner(layout.ny, 2), z = inner(layout.nz, 1);
-    const std::uint64_t faces = 2 * (x * y + x * z + y * z);
-    distance_field = std::min<std::uint64_t>(layout.cellCount(), faces * 2 * band) * 80;
-  }
+  const std::uint64_t distance_field = reach > 0 ? signedDistanceBytes(layout, reach) : 0;
   return estimateSimulationBytes(layout) + distance_field;
 }
 

@@ -104,7 +104,7 @@ TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
 // to `amplitude` out (noise > 0) or in: rock where the signed distance to the
 // shape is below the displacement.
 void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v, std::uint64_t seed) {
-  const std::vector<float> distance = signedDistance(inside, g, v.amplitude + 2 * g.h);
+  const SignedDistanceField distance = signedDistance(inside, g, v.amplitude + 2 * g.h);
   const PerlinNoise noise(counterHash(seed, purposeId("shape-variation"), 0, 0));
   // Off the lattice, where Perlin noise is 0 for every seed.
   Vec3d offset;
@@ -118,7 +118,7 @@ void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const 
         const Vec3d p = g.center(x, y, z);
         const double n = noise.fractal(p[0] / v.period + offset[0], p[1] / v.period + offset[1],
                                        p[2] / v.period + offset[2], v.octaves);
-        inside[i] = double(distance[i]) < v.amplitude * n ? 1 : 0;
+        inside[i] = distance[i] < v.amplitude * n ? 1 : 0;
       }
   });
 }
