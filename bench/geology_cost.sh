@@ -11,6 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 baseline=${1:?usage: bench/geology_cost.sh BASELINE_ROCKBAKE [OUT]}
 out=${2:-$(mktemp -d)}
+mkdir -p "$out"
 current=build/baker/rockbake
 no_geology=(--set shape.variation=null --set durability.strata=null --set durability.joints=null
             --set durability.rind=null)
