@@ -84,8 +84,10 @@ TEST(Cli, OverridesReachTheSimulation) {
 // SPEC §2.10: same preset and seed → byte-identical outputs at any thread count.
 // goblin: noise, two bubble bands, a collection, an image; hoodoo-cap: a cap
 // that falls (drop) and colluvium with removal; talus-cliff: crumbling rockfall.
+// Their geology: goblin and hoodoo-cap jointed, talus-cliff's dipping beds,
+// every one's variation, and tafoni-wall's rind (both through the distance field).
 TEST(Cli, RockVdbIsByteIdenticalAcrossThreadCountsAndRuns) {
-  for (const char* preset : {"goblin", "hoodoo-cap", "talus-cliff"}) {
+  for (const char* preset : {"goblin", "hoodoo-cap", "talus-cliff", "tafoni-wall"}) {
     TempDir dir;
     const std::vector<std::string> common = {"bake", presetPath(std::string(preset) + ".yaml"), "--resolution", "48",
                                              "--no-mesh"};
