@@ -23,10 +23,13 @@
 namespace rockbake {
 namespace {
 
-constexpr int kHalfWidth = 3;         // narrow band, voxels each side
-constexpr int kPreviewHalfWidth = 2;  // enough for a width-1 Gaussian; the band's set-up costs 3 x this passes
-constexpr int kMirrorLayers = 3;      // layers mirrored below the ground before smoothing
-constexpr float kSideMargin = 0.05f;  // voxels: how far inside (outside) a sample of (not of) the material stays
+constexpr int kHalfWidth = 3;               // narrow band, voxels each side
+constexpr int kPreviewHalfWidth = 2;        // enough for a width-1 Gaussian; the band's set-up costs 3 x this passes
+constexpr int kMirrorLayers = 3;            // layers mirrored below the ground before smoothing
+constexpr float kSideMargin = 0.05f;        // voxels: how far inside (outside) a sample of (not of) the material stays
+constexpr float kThinMargin = 0.25f;        // voxels: the same for a sample smoothing moved across (a voxel-thin part)
+constexpr double kOnFieldTolerance = 0.02;  // voxels: |phi| left after projectOntoField's steps that calls for a search
+constexpr double kSearchReach = 2.0;        // voxels: how far along a direction that search looks
 
 SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
                             openvdb::FloatGrid::Ptr* field) {
@@ -68,16 +71,50 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
     // of its voxel (inside where the material is, outside elsewhere), so a
     // one-voxel neck stays connected and a one-voxel gap stays open; the
     // surface still moves freely between the samples.
-    const float margin = kSideMargin * float(g.h);
-    for (auto it = sdf->tree().beginValueOn(); it; ++it) {
-      const openvdb::Coord c = it.getCoord();
+    const auto materialAt = [&](const openvdb::Coord& c) {
       const int z = c.z() < 0 && g.ground ? -1 - c.z() : c.z();  // mirrored layers follow their originals
-      const bool inside = c.x() >= 0 && c.y() >= 0 && z >= 0 && c.x() < g.nx && c.y() < g.ny && z < g.nz &&
-                          (c.z() >= 0 || z < kMirrorLayers) && rock.material[g.index(c.x(), c.y(), z)] == material;
-      const float v = *it;
-      if (inside && v > -margin) it.setValue(-margin);
-      if (!inside && v < margin) it.setValue(margin);
-    }
+      return c.x() >= 0 && c.y() >= 0 && z >= 0 && c.x() < g.nx && c.y() < g.ny && z < g.nz &&
+             (c.z() >= 0 || z < kMirrorLayers) && rock.material[g.index(c.x(), c.y(), z)] == material;
+    };
+    const float margin = kSideMargin * float(g.h), thin = kThinMargin * float(g.h);
+    // A sample smoothing moved across (a voxel-thin neck, fin or gap that it
+    // would erase) is held kThinMargin deep rather than kSideMargin: a feature
+    // a tenth of a voxel thick cannot be meshed without folding.
+    std::vector<std::pair<openvdb::Coord, bool>> crossed;  // (sample, inside)
+    const auto keepSide = [&](const openvdb::Coord& c, float v, bool inside, auto&& set) {
+      if (inside && v > -margin) set(v > 0 ? -thin : -margin);
+      if (!inside && v < margin) set(v < 0 ? thin : margin);
+      if (inside ? v > 0 : v < 0) crossed.push_back({c, inside});
+    };
+    for (auto it = sdf->tree().beginValueOn(); it; ++it)
+      keepSide(it.getCoord(), *it, materialAt(it.getCoord()), [&](float v) { it.setValue(v); });
+    // The filter's renormalisation can drop such a feature from the band
+    // altogether (its voxels left as inactive background of the wrong sign).
+    auto acc = sdf->getAccessor();
+    const int z_low = g.ground ? -kMirrorLayers : 0;
+    for (int z = z_low; z < g.nz; ++z)
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) {
+          const openvdb::Coord c(x, y, z);
+          if (acc.isValueOn(c)) continue;
+          keepSide(c, acc.getValue(c), materialAt(c), [&](float v) { acc.setValueOn(c, v); });
+        }
+    // Held samples sit next to samples of the other side up to the band's width
+    // away: restore the distance bound |phi(a) - phi(b)| <= |a - b| around them,
+    // so the crossing lies about kThinMargin from the sample, not a sliver
+    // against it. Order-free (a min, or a max, over the held samples).
+    const int reach = params.preview ? kPreviewHalfWidth : kHalfWidth;
+    for (const auto& [c, inside] : crossed)
+      for (int dz = -reach; dz <= reach; ++dz)
+        for (int dy = -reach; dy <= reach; ++dy)
+          for (int dx = -reach; dx <= reach; ++dx) {
+            const openvdb::Coord n = c.offsetBy(dx, dy, dz);
+            if (materialAt(n) == inside) continue;
+            const float d = float(std::sqrt(double(dx * dx + dy * dy + dz * dz)) * g.h);
+            const float v = acc.getValue(n);
+            const float bound = inside ? -thin + d : thin - d;
+            if (inside ? v > bound : v < bound) acc.setValueOn(n, bound);
+          }
   }
   if (g.ground) {
     // Intersect with the half-space z >= 0: phi = max(phi, -z). Below the
@@ -154,38 +191,106 @@ void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot) {
     meshes.bounds_max[a] = float(double(meshes.bounds_max[a]) - pivot[a]);
 }
 
+namespace {
+
+using Sampler = openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler>;
+
+// The zero crossing nearest to q (phi(q) = phi_q) on the segment q + t·dir,
+// t in (0, reach], dir of unit length: marched in tenths of a voxel to the
+// first change of sign, then bisected. False if the sign does not change.
+bool crossingAlong(const Sampler& sample, const openvdb::Vec3d& q, double phi_q, const openvdb::Vec3d& dir,
+                   double reach, double h, openvdb::Vec3d& crossing, double& distance) {
+  const int steps = std::max(1, int(std::ceil(reach / (0.1 * h))));
+  double lo = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    const double t = reach * k / steps;
+    if (t >= distance) return false;  // a nearer crossing is known already
+    if ((sample.wsSample(q + dir * t) > 0) == (phi_q > 0)) {
+      lo = t;
+      continue;
+    }
+    double hi = t;
+    for (int i = 0; i < 24; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      ((sample.wsSample(q + dir * mid) > 0) == (phi_q > 0) ? lo : hi) = mid;
+    }
+    // The side of the crossing where |phi| is smaller (they differ by bits).
+    const double t_best = std::abs(sample.wsSample(q + dir * lo)) <= std::abs(sample.wsSample(q + dir * hi)) ? lo : hi;
+    crossing = q + dir * t_best, distance = t_best;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field_ptr, bool ground) {
   if (!field_ptr) return;
   const SmoothedSdf& field = *field_ptr;
   if (!field.grid || mesh.positions.empty()) return;
   const openvdb::FloatGrid& grid = *field.grid;
   const double h = grid.voxelSize()[0];
+  const bool with_normals = mesh.normals.size() == mesh.positions.size();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096), [&](const auto& range) {
     // One accessor-backed sampler per task: samplers are not thread-safe. The
     // sampler keeps a reference to the accessor, so the accessor must outlive it.
     const openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
-    openvdb::tools::GridSampler<openvdb::FloatGrid::ConstAccessor, openvdb::tools::BoxSampler> sample(accessor,
-                                                                                                      grid.transform());
+    const Sampler sample(accessor, grid.transform());
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       auto& p = mesh.positions[i];
       if (ground && p[2] == 0.0f) continue;
       openvdb::Vec3d q(p[0], p[1], p[2]);
-      // Steps of at most half a voxel, until on the level set: Catmull-Clark
-      // can pull a sharp corner or a thin leg more than a voxel inside.
-      for (int step = 0; step < 6; ++step) {
-        const double phi = sample.wsSample(q);
-        if (std::abs(phi) < 1e-3 * h) break;
+      const auto gradient = [&](const openvdb::Vec3d& at) {
         openvdb::Vec3d g;
         for (int a = 0; a < 3; ++a) {
           openvdb::Vec3d d(0.0);
           d[a] = 0.5 * h;
-          g[a] = (sample.wsSample(q + d) - sample.wsSample(q - d)) / h;
+          g[a] = (sample.wsSample(at + d) - sample.wsSample(at - d)) / h;
         }
+        return g;
+      };
+      // Steps of at most half a voxel, until on the level set: Catmull-Clark
+      // can pull a sharp corner or a thin leg more than a voxel inside.
+      double phi = sample.wsSample(q);
+      for (int step = 0; step < 6 && std::abs(phi) >= 1e-3 * h; ++step) {
+        const openvdb::Vec3d g = gradient(q);
         const double g2 = g.lengthSqr();
         if (g2 < 1e-8) break;
         openvdb::Vec3d move = g * (phi / g2);
         if (move.length() > 0.5 * h) move *= 0.5 * h / move.length();  // never jump across a thin part
         q -= move;
+        phi = sample.wsSample(q);
+      }
+      // Where the field is creased (a voxel-thin part, held by the side
+      // margin), differences half a voxel wide straddle the crease and the
+      // steps can bounce across it. Then take the nearest crossing found along
+      // the gradient, the normal (both ways, two voxels) or the segment to a
+      // nearby sample of the other sign (a crossing is certain on those),
+      // bisected onto the field.
+      if (std::abs(phi) > kOnFieldTolerance * h) {
+        openvdb::Vec3d best = q;
+        double distance = std::numeric_limits<double>::infinity();
+        std::vector<openvdb::Vec3d> directions;
+        const openvdb::Vec3d g = gradient(q);
+        if (g.lengthSqr() > 1e-8) directions.push_back(g.unit());
+        if (with_normals) {
+          const openvdb::Vec3d n(mesh.normals[i][0], mesh.normals[i][1], mesh.normals[i][2]);
+          if (n.lengthSqr() > 1e-12) directions.push_back(n.unit());
+        }
+        for (const openvdb::Vec3d& d : directions)
+          for (double s : {-1.0, 1.0}) crossingAlong(sample, q, phi, d * s, kSearchReach * h, h, best, distance);
+        const openvdb::Vec3d index = grid.worldToIndex(q);
+        const openvdb::Coord base(int(std::floor(index[0])), int(std::floor(index[1])), int(std::floor(index[2])));
+        for (int dz = -1; dz <= 2; ++dz)
+          for (int dy = -1; dy <= 2; ++dy)
+            for (int dx = -1; dx <= 2; ++dx) {
+              const openvdb::Coord c = base.offsetBy(dx, dy, dz);
+              if ((accessor.getValue(c) > 0) == (phi > 0)) continue;
+              const openvdb::Vec3d to = grid.indexToWorld(c) - q;
+              const double length = to.length();
+              if (length > 0) crossingAlong(sample, q, phi, to / length, length, h, best, distance);
+            }
+        q = best;
       }
       p = {float(q[0]), float(q[1]), ground ? std::max(float(q[2]), 0.0f) : float(q[2])};
     }

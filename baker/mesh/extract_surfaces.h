@@ -8,6 +8,10 @@
 // Each material's occupancy becomes a narrow-band level set (zero crossing on
 // the voxel faces), smoothed by `smoothing` passes of a width-1 Gaussian
 // level-set filter, and polygonised at the zero crossing (OpenVDB, TBB-parallel).
+// Every voxel's sample keeps its side after smoothing; one that smoothing
+// moved across (a voxel-thin part) is held a quarter voxel deep, with the
+// distance bound restored around it, so such a part stays about half a voxel
+// thick instead of a sliver no mesh can follow without folding.
 // On a grid with ground, the lowest voxel layers are mirrored below z = 0
 // before smoothing (walls run straight into the ground) and the smoothed field
 // is intersected with the half-space z >= 0, so a surface resting on the
@@ -54,9 +58,11 @@ std::array<double, 3> footprintPivot(const VoxelRock& rock);
 void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot);
 
 // Moves every vertex not on the ground cap onto the zero crossing of `field`
-// (two Newton steps along the field's gradient, trilinear samples), so a
-// refined surface lies on the level set it was extracted from, as rock.vdb
-// records it. Normals are recomputed.
+// (up to six Newton steps along the field's gradient, trilinear samples; where
+// they leave it more than 0.02 voxels off, the nearest crossing found along
+// the gradient, the normal or towards a nearby sample of the other sign,
+// bisected), so a refined surface lies on the level set it was extracted
+// from, as rock.vdb records it. Normals are recomputed.
 void projectOntoField(SurfaceMesh& mesh, const SmoothedSdf* field, bool ground);
 
 // Smoothing rounds convex rock off: the surface encloses less than its voxels.

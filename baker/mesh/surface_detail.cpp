@@ -1,7 +1,9 @@
 #include "mesh/surface_detail.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -32,18 +34,80 @@ void displaceSurface(SurfaceMesh& mesh, const DetailParams& params) {
 
   const double range = double(params.durability_max) - params.durability_min;
   const double scale = params.noise.amplitude / rms;
+  std::vector<double> offset(n, 0.0);  // along the normal, world units
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-    auto& p = mesh.positions[i];
-    if (params.ground && p[2] == 0.0f) return;  // the ground cap stays flat on the ground
+    if (params.ground && mesh.positions[i][2] == 0.0f) return;  // the ground cap stays flat on the ground
     const double softness =
         range > 0 ? std::clamp((double(params.durability_max) - mesh.durability[i]) / range, 0.0, 1.0) : 0.5;
     const double exposure = std::clamp(double(mesh.curvature[i]), 0.0, 1.0);
     const double covered = std::clamp(double(mesh.colluvium[i]), 0.0, 1.0);
-    const double d = scale * value[i] * (0.5 + softness) * (0.5 + exposure) * (1.0 - covered);
-    const auto& nrm = mesh.normals[i];
-    for (int a = 0; a < 3; ++a) p[a] = float(double(p[a]) + d * nrm[a]);
-    if (params.ground) p[2] = std::max(p[2], 0.0f);
+    offset[i] = scale * value[i] * (0.5 + softness) * (0.5 + exposure) * (1.0 - covered);
   });
+
+  // Where the offsets would fold the surface (on a thin part or a tight
+  // crease): a triangle turned more than about 80 degrees from its undisplaced
+  // self, shrunk to a tenth of its area, or turned against an edge neighbour
+  // it faced with before. Then the offsets at its corners are halved and the
+  // triangles checked again; after kRounds, what still folds keeps no offset.
+  // Order-free, so the result does not depend on the thread count.
+  const std::vector<std::array<float, 3>> rest = mesh.positions;
+  const std::size_t nt = mesh.triangles.size();
+  using Vec = std::array<double, 3>;
+  const auto dot = [](const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  const auto normals = [&](const std::vector<std::array<float, 3>>& at, std::vector<Vec>& out) {
+    out.resize(nt);
+    tbb::parallel_for(std::size_t(0), nt, [&](std::size_t f) {
+      const auto& t = mesh.triangles[f];
+      Vec u, v;
+      for (int a = 0; a < 3; ++a) u[a] = double(at[t[1]][a]) - at[t[0]][a], v[a] = double(at[t[2]][a]) - at[t[0]][a];
+      out[f] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    });
+  };
+  // Pairs of triangles across an edge that faced the same side before.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
+  edges.reserve(3 * nt);
+  for (std::uint32_t f = 0; f < nt; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+      edges.push_back({std::min(a, b) << 32 | std::max(a, b), f});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<Vec> before, after;
+  normals(rest, before);
+  std::vector<std::array<std::uint32_t, 2>> pairs;
+  for (std::size_t e = 0; e + 1 < edges.size(); ++e)
+    if (edges[e].first == edges[e + 1].first && dot(before[edges[e].second], before[edges[e + 1].second]) > 0)
+      pairs.push_back({edges[e].second, edges[e + 1].second});
+
+  const auto place = [&](std::size_t i) {
+    auto& p = mesh.positions[i];
+    const auto& nrm = mesh.normals[i];
+    for (int a = 0; a < 3; ++a) p[a] = float(double(rest[i][a]) + offset[i] * nrm[a]);
+    if (params.ground) p[2] = std::max(p[2], 0.0f);
+  };
+  constexpr int kRounds = 8;
+  std::vector<char> fold(n);
+  std::vector<char> bad(nt);
+  for (int round = 0; round <= kRounds; ++round) {
+    tbb::parallel_for(std::size_t(0), n, place);
+    normals(mesh.positions, after);
+    tbb::parallel_for(std::size_t(0), nt, [&](std::size_t f) {
+      const double b2 = dot(before[f], before[f]), a2 = dot(after[f], after[f]);
+      bad[f] = !(dot(before[f], after[f]) > 0.2 * std::sqrt(a2 * b2) && a2 > 0.01 * b2);
+    });
+    for (const auto& [f, g] : pairs)
+      if (dot(after[f], after[g]) <= 0) bad[f] = bad[g] = 1;
+    std::fill(fold.begin(), fold.end(), 0);
+    bool any = false;
+    for (std::size_t f = 0; f < nt; ++f)
+      if (bad[f]) {
+        for (std::uint32_t v : mesh.triangles[f]) fold[v] = 1;
+        any = true;
+      }
+    if (!any || round == kRounds) break;
+    for (std::size_t i = 0; i < n; ++i)
+      if (fold[i]) offset[i] = round < kRounds - 1 ? 0.5 * offset[i] : 0.0;
+  }
   computeVertexNormals(mesh);
 }
 

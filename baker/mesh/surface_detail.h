@@ -10,7 +10,10 @@
 // with softness = (D_max − D) / (D_max − D_min) over the preset's durability
 // range (½ when the range is empty) and s the calibrated exposure (½ flat): soft,
 // exposed rock is roughest. Vertices on the ground cap (z = 0 with ground) do
-// not move, and no vertex is pushed below z = 0. The result is a pure function
+// not move, and no vertex is pushed below z = 0. Where the displacement would
+// fold the surface (a triangle turned over or against a neighbour, or
+// collapsed), it is halved at that triangle's corners, repeatedly, and dropped
+// there if that is not enough: a clean input stays free of fold-overs. The result is a pure function
 // of the mesh and the parameters (byte-identical at any thread count).
 #pragma once
 

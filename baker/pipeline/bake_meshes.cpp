@@ -16,6 +16,7 @@
 #include "export/ply_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
+#include "mesh/mesh_defects.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"
@@ -51,6 +52,10 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   // The shift along vertex normals and the field's shift agree only where its
   // gradient has unit length: settle the vertices on the field rock.vdb keeps.
   projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
+  // Where the field is creased (a voxel-thin part), projected neighbours can
+  // land folded over each other: flip those edges back (no vertex moves).
+  repairFoldOvers(meshes.rock);
+  repairFoldOvers(meshes.colluvium);
   r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
