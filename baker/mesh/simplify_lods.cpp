@@ -197,7 +197,7 @@ struct Pass {
 };
 
 Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices, const std::vector<char>& locked,
-                  std::size_t target_indices, float relative_error, double ratio) {
+                  std::size_t target_indices, float relative_error, std::size_t level) {
   std::vector<unsigned int> free, kept;
   for (std::size_t t = 0; t < locked.size(); ++t)
     (locked[t] ? kept : free).insert((locked[t] ? kept : free).end(), &indices[3 * t], &indices[3 * t] + 3);
@@ -214,9 +214,9 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
   const std::vector<unsigned int> copies = splitPinches(result, m.positions);
   pass.bad_edges = nonManifoldEdges(result);
   spdlog::debug(
-      "LOD {} of {}: {} → {} triangles ({} locked), error {:.2g}, {} pinched vertices split, {} glued, "
+      "LOD{} of {}: {} → {} triangles ({} locked), error {:.2g}, {} pinched vertices split, {} glued, "
       "{} non-manifold edges",
-      ratio, m.name, m.triangles.size(), result.size() / 3, kept.size() / 3, error, copies.size(), glued.size() / 3,
+      level, m.name, m.triangles.size(), result.size() / 3, kept.size() / 3, error, copies.size(), glued.size() / 3,
       pass.bad_edges);
   // A pinch whose split leaves the copy and its vertex in different pieces cut
   // the surface in two (a neck collapsed to a point); other pinches, and glued
@@ -322,13 +322,13 @@ double meanEdgeLength(const SurfaceMesh& m) {
 }
 
 // `m` simplified to about `target_triangles` (at least 4) or until the error
-// would pass `max_error` (world units), whichever comes first; `ratio` only for the log.
+// would pass `max_error` (world units), whichever comes first; `level` (the LOD's number) only for the log.
 // meshoptimizer does not check the link condition: a collapse can glue two
 // triangles back to back, pinch two sheets together, tear an edge open or fold
 // a triangle over. Each pass repairs what it can; see the loop for where
 // triangles are then locked (kept as they are) and the rest simplified again.
 // The cleanest pass is kept.
-SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double ratio, double max_error = -1.0) {
+SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
   if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
   const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
@@ -361,7 +361,7 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
     const std::size_t pass_target =
         budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
                : target;
-    Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, ratio);
+    Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, level);
     std::vector<Point> folds;
     for (const Point& p : pass.folded)
       if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
@@ -382,10 +382,10 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
     radius *= 2.0;
   }
   if (best->bad_edges > 0) {
-    spdlog::warn("LOD {} of the {} surface has {} edges not shared by exactly two faces", ratio, m.name,
+    spdlog::warn("LOD{} of the {} surface has {} edges not shared by exactly two faces", level, m.name,
                  best->bad_edges);
   } else if (best->folds_left > 0) {
-    spdlog::warn("LOD {} of the {} surface keeps {} folded or zero-area triangles", ratio, m.name, best->folds_left);
+    spdlog::warn("LOD{} of the {} surface keeps {} folded or zero-area triangles", level, m.name, best->folds_left);
   }
   return std::move(best->mesh);
 }
@@ -394,8 +394,8 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, double 
 
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
   AssetMeshes lod0;
-  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0.0, max_error); },
-                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0.0, max_error); });
+  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
+                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
   lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
   lod0.durability_range = meshes.durability_range;
   return lod0;
@@ -416,8 +416,9 @@ std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams
     if (count(rock) > from->rock.triangles.size() || count(colluvium) > from->colluvium.triangles.size())
       from = &meshes;
     AssetMeshes lod;
-    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), ratio); },
-                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), ratio); });
+    const std::size_t level = lods.size() + 1;
+    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), level); },
+                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
     lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));
