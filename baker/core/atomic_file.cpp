@@ -53,6 +53,21 @@ class DescriptorBuffer final : public std::streambuf {
 
   int sync() override { return drain() ? 0 : -1; }
 
+  // Seeking lets a writer patch what it wrote earlier (a header that depends on the content).
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode which) override {
+    if (!(which & std::ios_base::out) || !drain()) return pos_type(off_type(-1));
+    const int whence = dir == std::ios_base::beg ? SEEK_SET : dir == std::ios_base::cur ? SEEK_CUR : SEEK_END;
+    const off_t at = ::lseek(fd_, off_t(off), whence);
+    if (at < 0) {
+      error_ = errno;
+      return pos_type(off_type(-1));
+    }
+    return pos_type(off_type(at));
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
+
  private:
   bool drain() {
     const bool ok = writeAll(pbase(), std::size_t(pptr() - pbase()));

@@ -17,9 +17,10 @@ namespace rockbake {
 // Throws std::runtime_error naming the target and the OS reason.
 void writeFileAtomically(const std::filesystem::path& target, std::string_view bytes);
 
-// `write` streams the content; a stream error becomes std::runtime_error as
-// above, and an exception thrown by `write` itself propagates unchanged (after
-// the temporary is removed).
+// `write` streams the content, and may seek (seekp) to patch what it wrote
+// earlier; a stream error becomes std::runtime_error as above, and an
+// exception thrown by `write` itself propagates unchanged (after the
+// temporary is removed).
 void writeFileAtomically(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write);
 
 }  // namespace rockbake

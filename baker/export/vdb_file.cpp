@@ -12,10 +12,11 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "core/atomic_file.h"
 #include "core/openvdb_support.h"
@@ -100,18 +101,7 @@ std::uint64_t fnv1a(std::uint64_t state, std::string_view bytes) {
 // A UUID-formatted (8-4-4-4-12) stand-in for the archive's random one: 128
 // bits from two FNV-1a passes, with different offset bases, over all the
 // file's other bytes, marked RFC 9562 version 8 ("custom") so it reads as such.
-void replaceArchiveUuid(std::string& bytes, const std::string& tag, const fs::path& file) {
-  const std::string_view header = std::string_view(bytes).substr(0, kHeaderSearchBytes);
-  const std::size_t at = tag.size() == kUuidLength ? header.find(tag) : std::string_view::npos;
-  if (at == std::string_view::npos) {
-    fail(file, "write", "OpenVDB archive header has no UUID where expected (library version changed?)");
-  }
-  const std::string_view all(bytes);
-  const std::string_view before = all.substr(0, at);
-  const std::string_view after = all.substr(at + kUuidLength);
-  const std::uint64_t high = fnv1a(fnv1a(0xcbf29ce484222325ull, before), after);
-  const std::uint64_t low = fnv1a(fnv1a(0x84222325cbf29ce4ull, before), after);
-
+std::string contentUuid(std::uint64_t high, std::uint64_t low) {
   static constexpr char kHex[] = "0123456789abcdef";
   std::string digits(32, '0');
   for (int i = 0; i < 16; ++i) {
@@ -120,10 +110,73 @@ void replaceArchiveUuid(std::string& bytes, const std::string& tag, const fs::pa
   }
   digits[12] = '8';                            // version 8
   digits[16] = kHex[8 | ((low >> 60) & 0x3)];  // variant 10xx
-  const std::string uuid = digits.substr(0, 8) + "-" + digits.substr(8, 4) + "-" + digits.substr(12, 4) + "-" +
-                           digits.substr(16, 4) + "-" + digits.substr(20, 12);
-  bytes.replace(at, kUuidLength, uuid);
+  return digits.substr(0, 8) + "-" + digits.substr(8, 4) + "-" + digits.substr(12, 4) + "-" + digits.substr(16, 4) +
+         "-" + digits.substr(20, 12);
 }
+
+// Passes an archive's bytes through to a file while hashing every byte but
+// its UUID's, so the file is written as it is serialized (no copy of it in
+// memory) and the content UUID patched in afterwards. The header is held back
+// until it is complete, to find the UUID in it.
+class ContentHashingBuffer final : public std::streambuf {
+ public:
+  ContentHashingBuffer(std::ostream& out, const openvdb::io::Archive& archive, const fs::path& file)
+      : out_(out), archive_(archive), file_(file) {}
+
+  // Call after the archive is written: the UUID's offset and its stand-in.
+  std::pair<std::size_t, std::string> finish() {
+    if (at_ == kNotFound) releaseHeader();
+    return {at_, contentUuid(high_, low_)};
+  }
+
+ protected:
+  int_type overflow(int_type ch) override {
+    if (traits_type::eq_int_type(ch, traits_type::eof())) return traits_type::not_eof(ch);
+    const char c = traits_type::to_char_type(ch);
+    return xsputn(&c, 1) == 1 ? ch : traits_type::eof();
+  }
+
+  std::streamsize xsputn(const char* data, std::streamsize size) override {
+    std::string_view bytes(data, std::size_t(size));
+    if (at_ == kNotFound) {
+      const std::size_t take = std::min(bytes.size(), kHeaderSearchBytes - header_.size());
+      header_.append(bytes.substr(0, take));
+      bytes.remove_prefix(take);
+      if (header_.size() < kHeaderSearchBytes) return size;
+      releaseHeader();
+    }
+    pass(bytes);
+    return out_ ? size : 0;
+  }
+
+ private:
+  static constexpr std::size_t kNotFound = std::string::npos;
+
+  void releaseHeader() {
+    const std::string tag = archive_.getUniqueTag();
+    at_ = tag.size() == kUuidLength ? header_.find(tag) : kNotFound;
+    if (at_ == kNotFound)
+      fail(file_, "write", "OpenVDB archive header has no UUID where expected (library version changed?)");
+    const std::string_view header(header_);
+    high_ = fnv1a(high_, header.substr(0, at_));
+    low_ = fnv1a(low_, header.substr(0, at_));
+    out_.write(header_.data(), std::streamsize(at_ + kUuidLength));
+    pass(header.substr(at_ + kUuidLength));
+  }
+
+  void pass(std::string_view bytes) {
+    high_ = fnv1a(high_, bytes);
+    low_ = fnv1a(low_, bytes);
+    out_.write(bytes.data(), std::streamsize(bytes.size()));
+  }
+
+  std::ostream& out_;
+  const openvdb::io::Archive& archive_;
+  const fs::path& file_;
+  std::string header_;
+  std::size_t at_ = kNotFound;
+  std::uint64_t high_ = 0xcbf29ce484222325ull, low_ = 0x84222325cbf29ce4ull;
+};
 
 std::string layoutText(const GridLayout& layout) {
   return std::to_string(layout.nx) + "x" + std::to_string(layout.ny) + "x" + std::to_string(layout.nz);
@@ -164,7 +217,6 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
   checkArrays(rock, file);
   const GridLayout& layout = rock.layout;
 
-  std::string bytes;
   try {
     // Index space stays voxel (x, y, z); world space has the asset's pivot at the origin.
     const std::array<double, 3> pivot = footprintPivot(rock);
@@ -214,17 +266,23 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
     metadata.insertMeta("rockbake_version", openvdb::StringMetadata(ROCKBAKE_VERSION));
 #endif
 
-    openvdb::GridPtrVec grids{rockGrid, colluviumGrid, durabilityGrid, sdfGrid};
-    std::ostringstream buffer(std::ios::out | std::ios::binary);
-    openvdb::io::Stream archive(buffer);
-    archive.write(grids, metadata);
-    if (!buffer) fail(file, "write", "serializing the grids failed");
-    bytes = std::move(buffer).str();
-    replaceArchiveUuid(bytes, archive.getUniqueTag(), file);
+    const openvdb::GridPtrVec grids{rockGrid, colluviumGrid, durabilityGrid, sdfGrid};
+    writeFileAtomically(file, [&](std::ostream& out) {
+      std::ostream archive_out(nullptr);
+      openvdb::io::Stream archive(archive_out);
+      ContentHashingBuffer hashing(out, archive, file);
+      archive_out.rdbuf(&hashing);
+      archive.write(grids, metadata);
+      if (!archive_out || !out) fail(file, "write", "serializing the grids failed");
+      const auto [at, uuid] = hashing.finish();
+      out.seekp(std::streamoff(at));
+      out.write(uuid.data(), std::streamsize(uuid.size()));
+      out.seekp(0, std::ios::end);
+      if (!out) fail(file, "write", "patching the archive's UUID failed");
+    });
   } catch (const openvdb::Exception& e) {
     fail(file, "write", e.what());
   }
-  writeFileAtomically(file, bytes);
 }
 
 VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {
