@@ -228,6 +228,8 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   Preset meshing = preset;
   meshing.bubbles = simulation->activeParams().bubbles;
   weathered.rock = simulation->release();
+  // Its working state (air field, bit planes, work lists) is not needed past here.
+  simulation.reset();
   stages["simulate"] = clock.lap();
   double curvature = 0, colluvium = 0, rockfall = 0;
   for (const auto& c : weathered.cycles)
