@@ -331,4 +331,103 @@ std::size_t repairFoldOvers(SurfaceMesh& mesh) {
   return left;
 }
 
+std::size_t relaxFoldOvers(SurfaceMesh& mesh) {
+  FlipMesh fm(mesh);
+  std::vector<std::vector<std::uint32_t>> around(mesh.positions.size());
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::uint32_t v : mesh.triangles[t]) around[v].push_back(t);
+  // The triangles whose standing a move of v can change: v's own, whose
+  // normals move, and their edge neighbours, which are judged against them.
+  const auto region = [&](std::uint32_t v) {
+    std::vector<std::uint32_t> r;
+    for (std::uint32_t t : around[v]) {
+      r.push_back(t);
+      const auto& tri = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t u = fm.across(t, tri[k], tri[(k + 1) % 3]);
+        if (u != UINT32_MAX) r.push_back(u);
+      }
+    }
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    return r;
+  };
+  const auto defects = [&](const std::vector<std::uint32_t>& triangles) {
+    std::size_t n = 0;
+    for (std::uint32_t t : triangles) n += fm.defective(t);
+    return n;
+  };
+  for (int round = 0; round < 10; ++round) {
+    std::vector<std::uint32_t> vertices;
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+      if (fm.defective(t)) vertices.insert(vertices.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    bool moved = false;
+    for (std::uint32_t v : vertices) {
+      const std::vector<std::uint32_t> r = region(v);
+      const std::size_t before = defects(r);
+      if (before == 0) continue;
+      std::vector<std::uint32_t> ring;
+      for (std::uint32_t t : around[v])
+        for (std::uint32_t w : mesh.triangles[t])
+          if (w != v) ring.push_back(w);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      Vec mean{0, 0, 0};
+      for (std::uint32_t w : ring)
+        for (int i = 0; i < 3; ++i)
+          mean[std::size_t(i)] += double(mesh.positions[w][std::size_t(i)]) / double(ring.size());
+      const std::array<float, 3> original = mesh.positions[v];
+      for (double step : {1.0, 0.5, 0.25}) {
+        for (int i = 0; i < 3; ++i)
+          mesh.positions[v][std::size_t(i)] =
+              float(double(original[std::size_t(i)]) + step * (mean[std::size_t(i)] - original[std::size_t(i)]));
+        if (defects(r) < before) {
+          moved = true;
+          break;
+        }
+        mesh.positions[v] = original;
+      }
+    }
+    if (!moved) break;
+  }
+  computeVertexNormals(mesh);
+  std::size_t left = 0;
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) left += fm.defective(t);
+  return left;
+}
+
+std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles) {
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<std::uint32_t> parent(mesh.positions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
+  std::vector<std::size_t> size(mesh.positions.size(), 0);
+  std::vector<char> defective_piece(mesh.positions.size(), 0);
+  const FlipMesh fm(mesh);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t root = find(mesh.triangles[t][0]);
+    ++size[root];
+    if (fm.defective(t)) defective_piece[root] = 1;
+  }
+  std::size_t dropped = 0;
+  for (auto& t : mesh.triangles) {
+    const std::uint32_t root = find(t[0]);
+    if (defective_piece[root] && size[root] <= max_triangles) {
+      t = {t[0], t[0], t[0]};  // dropped by compact()
+      ++dropped;
+    }
+  }
+  if (dropped > 0) {
+    compact(mesh);
+    computeVertexNormals(mesh);
+  }
+  return dropped;
+}
+
 }  // namespace rockbake

@@ -35,4 +35,18 @@ MeshDefects checkMesh(const SurfaceMesh& mesh);
 // triangles are visited in index order). Returns the defects left (0 when clean).
 std::size_t repairFoldOvers(SurfaceMesh& mesh);
 
+// What flips and collapses leave, on a mesh with no error bound to keep (a LOD
+// simplified to a triangle budget): moves vertices. Each vertex of a fold-over
+// or zero-area triangle, in index order, goes to the mean of its neighbours
+// (or halfway, or a quarter of the way) when that leaves fewer such triangles
+// among those the move can change; up to ten rounds. Topology and attributes
+// are kept; normals are recomputed. Deterministic. Returns the defects left.
+std::size_t relaxFoldOvers(SurfaceMesh& mesh);
+
+// Removes every connected piece of at most `max_triangles` triangles that holds
+// a fold-over or zero-area triangle: at a LOD's budget, a speck of debris
+// (a lone colluvium voxel) simplifies to a handful of triangles lying flat on
+// each other. The mesh stays closed. Returns the triangles removed.
+std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles);
+
 }  // namespace rockbake

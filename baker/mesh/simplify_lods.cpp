@@ -328,6 +328,9 @@ double meanEdgeLength(const SurfaceMesh& m) {
 // a triangle over. Each pass repairs what it can; see the loop for where
 // triangles are then locked (kept as they are) and the rest simplified again.
 // The cleanest pass is kept.
+// A piece this small that the simplifier folded flat is a speck of debris, dropped from a budgeted LOD.
+constexpr std::size_t kSpeckTriangles = 24;
+
 SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
   if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
@@ -380,6 +383,12 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
     }
     lockAround(m, lock_around, radius, locked);
     radius *= 2.0;
+  }
+  // A budget has no error bound to keep, so what the repair left can be relaxed away.
+  if (budget && best->bad_edges == 0 && best->folds_left > 0) {
+    if (relaxFoldOvers(best->mesh) > 0) dropCollapsedSpecks(best->mesh, kSpeckTriangles);
+    const MeshDefects d = checkMesh(best->mesh);
+    best->folds_left = d.fold_overs + d.zero_area;
   }
   if (best->bad_edges > 0) {
     spdlog::warn("LOD{} of the {} surface has {} edges not shared by exactly two faces", level, m.name,
