@@ -20,16 +20,6 @@ VoxelRock weathered(const Preset& p) {
   return weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
 }
 
-double intersectionOverUnion(const VoxelRock& a, const VoxelRock& b) {
-  std::size_t both = 0, either = 0;
-  for (std::size_t i = 0; i < a.material.size(); ++i) {
-    const bool ra = a.material[i] == Material::Rock, rb = b.material[i] == Material::Rock;
-    both += ra && rb;
-    either += ra || rb;
-  }
-  return either ? double(both) / double(either) : 1.0;
-}
-
 Preset withoutGeology(Preset p) {
   p.shape.variation.reset();
   p.durability.strata.reset();
@@ -54,7 +44,7 @@ int main(int argc, char** argv) {
         const Preset p = loadPreset(entry.preset_file, {{}, entry.seeds[s], resolution});
         rocks[s] = weathered(geology ? p : withoutGeology(p));
       }
-      iou[geology] = intersectionOverUnion(rocks[0], rocks[1]);
+      iou[geology] = rockIntersectionOverUnion(rocks[0], rocks[1]);
     }
     std::printf("| %s | %llu, %llu | %.3f | %.3f |\n", entry.name.c_str(), (unsigned long long)entry.seeds[0],
                 (unsigned long long)entry.seeds[1], iou[0], iou[1]);

@@ -32,16 +32,6 @@ VoxelRock weathered(const Preset& p) {
   return weatherRock(initialRock(p), p).rock;
 }
 
-double intersectionOverUnion(const VoxelRock& a, const VoxelRock& b) {
-  std::size_t both = 0, either = 0;
-  for (std::size_t i = 0; i < a.material.size(); ++i) {
-    const bool ra = a.material[i] == Material::Rock, rb = b.material[i] == Material::Rock;
-    both += ra && rb;
-    either += ra || rb;
-  }
-  return either ? double(both) / double(either) : 1.0;
-}
-
 // Height (world units) of the highest rock voxel's top, and the area of the
 // rock's footprint (columns holding rock).
 struct Character {
@@ -71,7 +61,7 @@ TEST(Geology, EverySeedOfTheCatalogueIsADifferentRockOfTheSameKind) {
     std::vector<VoxelRock> rocks;
     for (std::size_t s = 0; s < 2; ++s)
       rocks.push_back(weathered(loadPreset(entry.preset_file, {{}, entry.seeds[s], 48})));
-    const double iou = intersectionOverUnion(rocks[0], rocks[1]);
+    const double iou = rockIntersectionOverUnion(rocks[0], rocks[1]);
     const Character a = character(rocks[0]), b = character(rocks[1]);
     RecordProperty(entry.name + "_iou", std::to_string(iou));
     EXPECT_LE(iou, 0.85) << entry.name << ": seeds " << entry.seeds[0] << " and " << entry.seeds[1];
@@ -81,7 +71,8 @@ TEST(Geology, EverySeedOfTheCatalogueIsADifferentRockOfTheSameKind) {
     // Same seed, same rock: the initial rock (shape and durability) is rebuilt identically.
     const Preset again = loadPreset(entry.preset_file, {{}, entry.seeds[0], 48});
     const VoxelRock first = initialRock(again), second = initialRock(again);
-    EXPECT_TRUE(first.material == second.material && first.durability.toDense() == second.durability.toDense()) << entry.name;
+    EXPECT_TRUE(first.material == second.material && first.durability.toDense() == second.durability.toDense())
+        << entry.name;
   }
 }
 

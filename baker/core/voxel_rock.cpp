@@ -62,4 +62,14 @@ std::size_t VoxelRock::count(Material m) const {
   return std::size_t(std::count(material.begin(), material.end(), m));
 }
 
+double rockIntersectionOverUnion(const VoxelRock& a, const VoxelRock& b) {
+  std::size_t both = 0, either = 0;
+  for (std::size_t i = 0; i < a.material.size(); ++i) {
+    const bool ra = a.material[i] == Material::Rock, rb = b.material[i] == Material::Rock;
+    both += ra && rb;
+    either += ra || rb;
+  }
+  return either ? double(both) / double(either) : 1.0;
+}
+
 }  // namespace rockbake

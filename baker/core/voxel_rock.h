@@ -106,6 +106,10 @@ struct VoxelRock {
   std::size_t count(Material m) const;
 };
 
+// How much two rocks on the same layout overlap: rock voxels in both over rock
+// voxels in either (1 when neither has rock). Compares seeds of a preset.
+double rockIntersectionOverUnion(const VoxelRock& a, const VoxelRock& b);
+
 // Sets integrity to 1 and durability to 0 everywhere, with both spans sized
 // to each row's rock cells (so assigning them allocates nothing more).
 void resetRockValues(VoxelRock& rock);
