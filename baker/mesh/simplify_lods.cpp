@@ -72,13 +72,29 @@ std::vector<unsigned int> dropSandwiches(std::vector<unsigned int>& indices) {
   tbb::parallel_sort(sorted.begin(), sorted.end());
   std::vector<char> drop(n, 0);
   std::vector<unsigned int> dropped;
-  // Pair them off two by two within a run of equal corners (an odd one out stays).
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    if (sorted[i].first == sorted[i + 1].first) {
-      drop[sorted[i].second] = drop[sorted[i + 1].second] = 1;
-      dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
-      ++i;
+  // Within a run of equal corners, pair each triangle with the next one of
+  // opposite winding (what is left stays): dropping two of the same winding
+  // would leave their edges with more faces one way than the other, open.
+  const auto ascending = [&](std::size_t t) {  // winds through its corners in increasing order
+    const unsigned int a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+    return (a < b) + (b < c) + (c < a) == 2;
+  };
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && sorted[j].first == sorted[i].first) ++j;
+    for (std::size_t a = i; a + 1 < j; ++a) {
+      const std::size_t ta = sorted[a].second;
+      if (drop[ta]) continue;
+      for (std::size_t b = a + 1; b < j; ++b) {
+        const std::size_t tb = sorted[b].second;
+        if (drop[tb] || ascending(ta) == ascending(tb)) continue;
+        drop[ta] = drop[tb] = 1;
+        dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
+        break;
+      }
     }
+    i = j;
+  }
   if (dropped.empty()) return dropped;
   std::size_t w = 0;
   for (std::size_t t = 0; t < n; ++t)
