@@ -72,13 +72,29 @@ std::vector<unsigned int> dropSandwiches(std::vector<unsigned int>& indices) {
   tbb::parallel_sort(sorted.begin(), sorted.end());
   std::vector<char> drop(n, 0);
   std::vector<unsigned int> dropped;
-  // Pair them off two by two within a run of equal corners (an odd one out stays).
-  for (std::size_t i = 0; i + 1 < n; ++i)
-    if (sorted[i].first == sorted[i + 1].first) {
-      drop[sorted[i].second] = drop[sorted[i + 1].second] = 1;
-      dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
-      ++i;
+  // Within a run of equal corners, pair each triangle with the next one of
+  // opposite winding (what is left stays): dropping two of the same winding
+  // would leave their edges with more faces one way than the other, open.
+  const auto ascending = [&](std::size_t t) {  // winds through its corners in increasing order
+    const unsigned int a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
+    return (a < b) + (b < c) + (c < a) == 2;
+  };
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && sorted[j].first == sorted[i].first) ++j;
+    for (std::size_t a = i; a + 1 < j; ++a) {
+      const std::size_t ta = sorted[a].second;
+      if (drop[ta]) continue;
+      for (std::size_t b = a + 1; b < j; ++b) {
+        const std::size_t tb = sorted[b].second;
+        if (drop[tb] || ascending(ta) == ascending(tb)) continue;
+        drop[ta] = drop[tb] = 1;
+        dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
+        break;
+      }
     }
+    i = j;
+  }
   if (dropped.empty()) return dropped;
   std::size_t w = 0;
   for (std::size_t t = 0; t < n; ++t)
@@ -97,12 +113,17 @@ std::size_t nonManifoldEdges(const std::vector<unsigned int>& indices) {
   return bad;
 }
 
-// Makes an edge-paired triangle soup manifold by splitting pinched vertices.
-// Where an undirected edge carries k faces each way (k > 1: sheets pinched
-// onto one edge), each face is paired with its neighbour around the edge
-// across the solid between the sheets;
-// then the faces around each vertex are grouped into fans joined through those
-// pairs, and every fan after the first gets its own copy of the vertex.
+// Makes an edge-paired triangle soup manifold by splitting vertices.
+// Where an undirected edge carries k faces each way (k > 1: sheets touching
+// along the edge, or pinched onto it), each outgoing face is paired with an
+// incoming one: its neighbour around the edge across the solid between the
+// sheets when the faces alternate in direction around it, else the faces in
+// angle order. The faces around each vertex are then grouped into fans joined
+// through those pairs. Two pairs of one edge whose fans coincide at both its
+// ends would still share the edge after the split (the sheets meet there and
+// again elsewhere around both vertices): re-pairing them crosswise splits the
+// fan at each end in two, one pair in each, so it is done until none is left.
+// Every fan after the first of its vertex then gets its own copy of the vertex.
 // Returns, for each vertex of the result beyond `vertex_count`, the vertex it copies.
 std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
                                        const std::vector<std::array<float, 3>>& positions) {
@@ -111,12 +132,14 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
   const auto prev = [](std::size_t c) { return c - c % 3 + (c % 3 + 2) % 3; };
   constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> twin(corners, kNone);
+  std::vector<std::vector<std::size_t>> shared;  // per edge with k > 1: its outgoing corners
   forEachEdge(indices, [&](std::uint64_t k, const auto& list, const auto& back_list) {
     if (list.size() != back_list.size()) return;  // left open
     if (list.size() == 1) {
       twin[list[0]] = back_list[0], twin[back_list[0]] = list[0];
       return;
     }
+    shared.push_back(list);
     // Sort the faces around the edge by angle; an outgoing face's outward
     // normal turns towards increasing angle, so the solid between two sheets
     // lies between it and the face just before it: pair those.
@@ -124,8 +147,8 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
     const auto& pw = positions[k & 0xffffffffu];
     const std::array<double, 3> d0{double(pw[0]) - pu[0], double(pw[1]) - pu[1], double(pw[2]) - pu[2]};
     const double dl = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
-    if (dl == 0) return;
-    const std::array<double, 3> d{d0[0] / dl, d0[1] / dl, d0[2] / dl};
+    const std::array<double, 3> d =
+        dl > 0 ? std::array<double, 3>{d0[0] / dl, d0[1] / dl, d0[2] / dl} : std::array<double, 3>{0, 0, 0};
     const auto radial = [&](std::size_t c) {  // the face's third vertex, off the axis
       const auto& px = positions[indices[prev(c)]];
       std::array<double, 3> r{double(px[0]) - pu[0], double(px[1]) - pu[1], double(px[2]) - pu[2]};
@@ -149,23 +172,53 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
     bool alternating = true;
     for (std::size_t i = 0; i < n; ++i)
       alternating &= ((around[i].second & kIn) != 0) != ((around[(i + 1) % n].second & kIn) != 0);
-    if (!alternating) return;  // sheets cross: leave it
-    for (std::size_t i = 0; i < n; ++i) {
-      if (around[i].second & kIn) continue;
-      const std::size_t out = around[i].second, in = around[(i + n - 1) % n].second & ~kIn;
-      twin[out] = in, twin[in] = out;
+    if (alternating) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (around[i].second & kIn) continue;
+        const std::size_t out = around[i].second, in = around[(i + n - 1) % n].second & ~kIn;
+        twin[out] = in, twin[in] = out;
+      }
+      return;
     }
+    // Sheets that cross, or lie on each other (no angle to sort by): any
+    // pairing is as good; the fans below make it manifold.
+    std::vector<std::size_t> outs, ins;
+    for (const auto& [a, c] : around) (c & kIn ? ins : outs).push_back(c & ~kIn);
+    for (std::size_t i = 0; i < outs.size(); ++i) twin[outs[i]] = ins[i], twin[ins[i]] = outs[i];
   });
   // Union-find over corners: corner c and the corner across prev(c)'s edge share a vertex and a fan.
   std::vector<std::size_t> parent(corners);
-  for (std::size_t c = 0; c < corners; ++c) parent[c] = c;
   const auto find = [&](std::size_t c) {
     while (parent[c] != c) c = parent[c] = parent[parent[c]];
     return c;
   };
-  for (std::size_t c = 0; c < corners; ++c) {
-    const std::size_t t = twin[prev(c)];
-    if (t != kNone) parent[find(c)] = find(t);
+  const auto group = [&] {
+    for (std::size_t c = 0; c < corners; ++c) parent[c] = c;
+    for (std::size_t c = 0; c < corners; ++c) {
+      const std::size_t t = twin[prev(c)];
+      if (t != kNone) parent[find(c)] = find(t);
+    }
+  };
+  // One crosswise re-pairing per regrouping: each splits fans, so it ends
+  // (a re-pairing decided on stale fans could join two instead). Where an
+  // edge was left open, fans are not closed loops; the bound holds there.
+  std::size_t rounds = 0;
+  for (const auto& outs : shared) rounds += outs.size();
+  for (group(); rounds > 0; --rounds, group()) {
+    bool repaired = false;
+    for (std::size_t e = 0; e < shared.size() && !repaired; ++e) {
+      const auto& outs = shared[e];
+      // An outgoing corner sits at the edge's lower vertex, the next one at the higher.
+      const auto ends = [&](std::size_t out) { return std::pair{find(out), find(nextCorner(out))}; };
+      for (std::size_t i = 0; i < outs.size() && !repaired; ++i)
+        for (std::size_t j = i + 1; j < outs.size() && !repaired; ++j)
+          if (ends(outs[i]) == ends(outs[j])) {
+            const std::size_t a = outs[i], b = outs[j], ta = twin[a], tb = twin[b];
+            twin[a] = tb, twin[tb] = a, twin[b] = ta, twin[ta] = b;
+            repaired = true;
+          }
+    }
+    if (!repaired) break;
   }
   std::vector<std::size_t> fan_of_vertex(vertex_count, kNone);  // the root that keeps the vertex
   std::unordered_map<std::size_t, unsigned int> copy_of_root;
@@ -400,6 +453,24 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
 }
 
 }  // namespace
+
+std::size_t splitNonManifold(SurfaceMesh& mesh) {
+  std::vector<unsigned int> indices;
+  indices.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
+  const std::vector<unsigned int> copies = splitPinches(indices, mesh.positions);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) mesh.triangles[t][k] = indices[3 * t + k];
+  const std::size_t n = mesh.positions.size();
+  const auto extend = [&](auto& attribute) {
+    if (attribute.size() != n) return;
+    for (unsigned int v : copies) attribute.push_back(attribute[v]);
+  };
+  extend(mesh.durability), extend(mesh.colluvium), extend(mesh.curvature), extend(mesh.altitude);
+  extend(mesh.colors), extend(mesh.positions);
+  computeVertexNormals(mesh);
+  return copies.size();
+}
 
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
   AssetMeshes lod0;

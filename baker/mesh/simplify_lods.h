@@ -6,6 +6,7 @@
 // fold-overs or zero-area triangles (repairFoldOvers after the simplifier).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "core/surface_mesh.h"
@@ -28,11 +29,19 @@ AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error);
 // Targets are approached with no error bound (meshoptimizer may stop a little
 // short where every collapse would flip a face). meshoptimizer does not keep
 // manifoldness by itself, so coincident back-to-back triangle pairs are
-// removed and vertices where it pinched two sheets together are split (the
-// copies coincide). If an edge still is not shared by exactly two faces (sheets
-// pinched in a way the repair cannot pair), the surface is simplified once more
-// to a target 1 % lower; should that fail too, the better result is kept and a
-// warning logged (seen: a few edges in a million triangles on some assets).
+// removed and the surface is cut apart where it glued two sheets together along
+// an edge or at a vertex (splitNonManifold; the copies coincide). Should an
+// edge still not be shared by exactly two faces, triangles around it are kept
+// as they are and the rest simplified again; the best result is kept, and a
+// warning logged if it still has such an edge.
 std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params);
+
+// Makes a closed triangle mesh 2-manifold without moving anything: where
+// several sheets meet along an edge (more than one face each way) or at a
+// vertex, each sheet gets its own copies of the vertices there, with their
+// attributes; normals are recomputed. Every edge must be used as often each
+// way (as collapsing a closed mesh leaves it). Deterministic. Returns the
+// vertices added.
+std::size_t splitNonManifold(SurfaceMesh& mesh);
 
 }  // namespace rockbake
