@@ -379,15 +379,23 @@ std::size_t relaxFoldOvers(SurfaceMesh& mesh) {
         for (int i = 0; i < 3; ++i)
           mean[std::size_t(i)] += double(mesh.positions[w][std::size_t(i)]) / double(ring.size());
       const std::array<float, 3> original = mesh.positions[v];
-      for (double step : {1.0, 0.5, 0.25}) {
-        for (int i = 0; i < 3; ++i)
-          mesh.positions[v][std::size_t(i)] =
-              float(double(original[std::size_t(i)]) + step * (mean[std::size_t(i)] - original[std::size_t(i)]));
-        if (defects(r) < before) {
-          moved = true;
-          break;
+      // Towards the neighbours' mean first, then towards each neighbour in turn.
+      std::vector<Vec> goals{mean};
+      for (std::uint32_t w : ring)
+        goals.push_back({double(mesh.positions[w][0]), double(mesh.positions[w][1]), double(mesh.positions[w][2])});
+      for (const Vec& goal : goals) {
+        for (double step : {1.0, 0.5, 0.25}) {
+          if (&goal != &goals[0] && step == 1.0) continue;  // onto a neighbour: zero area
+          for (int i = 0; i < 3; ++i)
+            mesh.positions[v][std::size_t(i)] =
+                float(double(original[std::size_t(i)]) + step * (goal[std::size_t(i)] - original[std::size_t(i)]));
+          if (defects(r) < before) {
+            moved = true;
+            break;
+          }
+          mesh.positions[v] = original;
         }
-        mesh.positions[v] = original;
+        if (mesh.positions[v] != original) break;
       }
     }
     if (!moved) break;

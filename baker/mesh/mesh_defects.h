@@ -38,7 +38,8 @@ std::size_t repairFoldOvers(SurfaceMesh& mesh);
 // What flips and collapses leave, on a mesh with no error bound to keep (a LOD
 // simplified to a triangle budget): moves vertices. Each vertex of a fold-over
 // or zero-area triangle, in index order, goes to the mean of its neighbours
-// (or halfway, or a quarter of the way) when that leaves fewer such triangles
+// (or halfway, or a quarter of the way), or else halfway or a quarter of the
+// way towards one neighbour, the first that leaves fewer such triangles
 // among those the move can change; up to ten rounds. Topology and attributes
 // are kept; normals are recomputed. Deterministic. Returns the defects left.
 std::size_t relaxFoldOvers(SurfaceMesh& mesh);

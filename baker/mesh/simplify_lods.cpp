@@ -384,6 +384,16 @@ double meanEdgeLength(const SurfaceMesh& m) {
 // A piece this small that the simplifier folded flat is a speck of debris, dropped from a budgeted LOD.
 constexpr std::size_t kSpeckTriangles = 24;
 
+// Moves vertices of what the repair left towards their neighbours, drops
+// specks still folded, and counts again.
+void relaxLeftovers(Pass& pass) {
+  if (relaxFoldOvers(pass.mesh) > 0) dropCollapsedSpecks(pass.mesh, kSpeckTriangles);
+  const MeshDefects d = checkMesh(pass.mesh);
+  pass.folds_left = d.fold_overs + d.zero_area;
+  pass.folded.clear();
+  for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(pass.mesh.positions[v]);
+}
+
 SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
   if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
@@ -418,6 +428,8 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
         budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
                : target;
     Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, level);
+    // A budget has no error bound to keep: what the repair left is relaxed away before the passes are compared.
+    if (budget && pass.bad_edges == 0 && pass.folds_left > 0) relaxLeftovers(pass);
     std::vector<Point> folds;
     for (const Point& p : pass.folded)
       if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
@@ -436,12 +448,6 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
     }
     lockAround(m, lock_around, radius, locked);
     radius *= 2.0;
-  }
-  // A budget has no error bound to keep, so what the repair left can be relaxed away.
-  if (budget && best->bad_edges == 0 && best->folds_left > 0) {
-    if (relaxFoldOvers(best->mesh) > 0) dropCollapsedSpecks(best->mesh, kSpeckTriangles);
-    const MeshDefects d = checkMesh(best->mesh);
-    best->folds_left = d.fold_overs + d.zero_area;
   }
   if (best->bad_edges > 0) {
     spdlog::warn("LOD{} of the {} surface has {} edges not shared by exactly two faces", level, m.name,
