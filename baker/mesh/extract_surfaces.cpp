@@ -82,6 +82,9 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
     // a tenth of a voxel thick cannot be meshed without folding.
     std::vector<std::pair<openvdb::Coord, bool>> crossed;  // (sample, inside)
     const auto keepSide = [&](const openvdb::Coord& c, float v, bool inside, auto&& set) {
+      // Colluvium's voxel-thin parts (a lone voxel, a one-voxel veneer on a
+      // face) are left to the smoothing: held, they stand as plates and slits.
+      if ((inside ? v > 0 : v < 0) && material != Material::Rock) return;
       if (inside && v > -margin) set(v > 0 ? -thin : -margin);
       if (!inside && v < margin) set(v < 0 ? thin : margin);
       if (inside ? v > 0 : v < 0) crossed.push_back({c, inside});

@@ -9,9 +9,11 @@
 // the voxel faces), smoothed by `smoothing` passes of a width-1 Gaussian
 // level-set filter, and polygonised at the zero crossing (OpenVDB, TBB-parallel).
 // Every voxel's sample keeps its side after smoothing; one that smoothing
-// moved across (a voxel-thin part) is held a quarter voxel deep, with the
-// distance bound restored around it, so such a part stays about half a voxel
-// thick instead of a sliver no mesh can follow without folding.
+// moved across (a voxel-thin part of the rock) is held a quarter voxel deep,
+// with the distance bound restored around it, so such a part stays about half
+// a voxel thick instead of a sliver no mesh can follow without folding. The
+// colluvium's voxel-thin parts are left to the smoothing (a lone voxel or a
+// one-voxel veneer would stand as a plate).
 // On a grid with ground, the lowest voxel layers are mirrored below z = 0
 // before smoothing (walls run straight into the ground) and the smoothed field
 // is intersected with the half-space z >= 0, so a surface resting on the
