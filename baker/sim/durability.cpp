@@ -209,7 +209,7 @@ std::vector<std::uint8_t> rindCoverage(const VoxelRock& rock, double depth) {
   const GridLayout& g = rock.layout;
   std::vector<std::uint8_t> inside(g.cellCount());
   for (std::size_t i = 0; i < inside.size(); ++i) inside[i] = rock.material[i] == Material::Rock;
-  const SignedDistanceField distance = signedDistance(inside, g, depth + g.h);
+  const SignedDistanceField distance = signedDistance(inside, g, rindReach(depth, g.h));
   std::vector<std::uint8_t> coverage(g.cellCount(), 0);
   tbb::parallel_for(std::size_t(0), coverage.size(), [&](std::size_t i) {
     if (!inside[i]) return;

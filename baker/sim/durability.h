@@ -102,6 +102,12 @@ class Geology {
 // inside; 0 off rock. Computed from the initial rock: the rind's extent.
 std::vector<std::uint8_t> rindCoverage(const VoxelRock& rock, double depth);
 
+// How far (world units) from the surface rindCoverage reads its signed
+// distance, on a grid of voxel size h: the depth and a voxel.
+inline double rindReach(double depth, double h) {
+  return depth + h;
+}
+
 // Sets the durability of every rock voxel from `field` read through
 // `geology` (rock.rind holds the rind's coverage when the geology has one);
 // other voxels get 0.

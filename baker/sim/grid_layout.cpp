@@ -2,6 +2,8 @@
 
 #include "sim/bubble.h"
 #include "sim/distance_field.h"
+#include "sim/durability.h"
+#include "sim/shapes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,11 +49,11 @@ std::uint64_t estimateSimulationBytes(const GridLayout& layout) {
 
 std::uint64_t estimateSimulationBytes(const SimParams& params) {
   const GridLayout layout = computeGridLayout(params);
-  // The reaches varyBoundary and rindCoverage ask signedDistance for.
+  // The start's distance field, as far out as variation or the rind reads it.
   double reach = 0.0;
   if (params.shape.variation && params.shape.variation->amplitude > 0)
-    reach = params.shape.variation->amplitude + 2 * layout.h;
-  if (params.durability.rind) reach = std::max(reach, params.durability.rind->depth + layout.h);
+    reach = variationReach(*params.shape.variation, layout.h);
+  if (params.durability.rind) reach = std::max(reach, rindReach(params.durability.rind->depth, layout.h));
   const std::uint64_t distance_field = reach > 0 ? signedDistanceBytes(layout, reach) : 0;
   return estimateSimulationBytes(layout) + distance_field;
 }

@@ -21,14 +21,9 @@ GridLayout computeGridLayout(const SimParams& params);
 std::uint64_t estimateSimulationBytes(const GridLayout& layout);
 
 // The same for a preset's parameters, with what the start adds: the signed
-// distance fields of shape.variation and durability.rind, OpenVDB level sets
-// over a band as wide as the variation's amplitude or the rind's depth on
-// both sides of the boundary. About 80 bytes a band cell; the boundary is
-// taken to be as large as the domain's outer faces, and the band at most the
-// whole grid. Measured peaks at resolution 200: rounded-cobble (the band is
-// the grid) 515 MiB against 530 estimated, goblin 157 against 435: on the
-// safe side for slender rocks. This is the figure the memory guard and the
-// out-of-memory message use.
+// distance field of shape.variation and durability.rind (signedDistanceBytes:
+// two bytes a cell, four when its reach is over 180 voxels). This is the
+// figure the memory guard and the out-of-memory message use.
 std::uint64_t estimateSimulationBytes(const SimParams& params);
 
 }  // namespace rockbake

@@ -104,7 +104,7 @@ TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
 // to `amplitude` out (noise > 0) or in: rock where the signed distance to the
 // shape is below the displacement.
 void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v, std::uint64_t seed) {
-  const SignedDistanceField distance = signedDistance(inside, g, v.amplitude + 2 * g.h);
+  const SignedDistanceField distance = signedDistance(inside, g, variationReach(v, g.h));
   const PerlinNoise noise(counterHash(seed, purposeId("shape-variation"), 0, 0));
   // Off the lattice, where Perlin noise is 0 for every seed.
   Vec3d offset;

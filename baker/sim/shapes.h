@@ -15,4 +15,10 @@ namespace rockbake {
 // caller decides whether that is an error.
 VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& params);
 
+// How far (world units) from the shape's boundary shape.variation reads its
+// signed distance, on a grid of voxel size h: the amplitude and two voxels.
+inline double variationReach(const ShapeVariation& variation, double h) {
+  return variation.amplitude + 2 * h;
+}
+
 }  // namespace rockbake
