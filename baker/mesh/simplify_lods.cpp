@@ -374,13 +374,6 @@ double meanEdgeLength(const SurfaceMesh& m) {
   return m.triangles.empty() ? 0.0 : sum / double(3 * m.triangles.size());
 }
 
-// `m` simplified to about `target_triangles` (at least 4) or until the error
-// would pass `max_error` (world units), whichever comes first; `level` (the LOD's number) only for the log.
-// meshoptimizer does not check the link condition: a collapse can glue two
-// triangles back to back, pinch two sheets together, tear an edge open or fold
-// a triangle over. Each pass repairs what it can; see the loop for where
-// triangles are then locked (kept as they are) and the rest simplified again.
-// The cleanest pass is kept.
 // A piece this small that the simplifier folded flat is a speck of debris, dropped from a budgeted LOD.
 constexpr std::size_t kSpeckTriangles = 24;
 
@@ -394,6 +387,13 @@ void relaxLeftovers(Pass& pass) {
   for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(pass.mesh.positions[v]);
 }
 
+// `m` simplified to about `target_triangles` (at least 4) or until the error
+// would pass `max_error` (world units), whichever comes first; `level` (the LOD's number) only for the log.
+// meshoptimizer does not check the link condition: a collapse can glue two
+// triangles back to back, pinch two sheets together, tear an edge open or fold
+// a triangle over. Each pass repairs what it can; see the loop for where
+// triangles are then locked (kept as they are) and the rest simplified again.
+// The cleanest pass is kept.
 SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
   if (m.triangles.empty()) return m;
   const std::size_t index_count = 3 * m.triangles.size();
