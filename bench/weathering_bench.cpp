@@ -1,9 +1,9 @@
 // Bubble counting and weathering cycles (figures in bench/README.md).
 //
-//   BM_AlphaNaive/R, BM_AlphaRows/R, BM_AlphaRuns/R/path: α for a radius-R
-//     sphere bubble (R = 6, 19) on the exposed voxels of a weathering 96³
-//     cube: the naive triple loop, the bit-row counter one voxel at a time,
-//     and runs of voxels along x as the simulation counts them, on the
+//   BM_AlphaNaive/R, BM_AlphaRows/R/path, BM_AlphaRuns/R/path: α for a
+//     radius-R sphere bubble (R = 6, 19) on the exposed voxels of a weathering
+//     96³ cube: the naive triple loop, the bit-row counter one voxel at a
+//     time, and runs of voxels along x as the simulation counts them, on the
 //     portable (0) and AVX-512 (1) paths. Every count is checked against the
 //     naive loop before timing.
 //   BM_Cycle/N/threads: one weathering cycle of an N³ cube.
@@ -113,7 +113,10 @@ void checkAgainstNaive(const WeatheredRock& w, const Bubble& bubble, const AirFi
     field.countAirRun(path, bound, r.x0, r.y, r.z, r.dx, r.n, counts);
     for (int k = 0; k < r.n; ++k, ++i) {
       const int naive = naiveCountAir(w.rock, bubble, r.x0 + r.dx[k], r.y, r.z);
-      if (counts[k] != naive || field.countAir(bound, r.x0 + r.dx[k], r.y, r.z) != naive) {
+      const std::uint8_t zero[1] = {0};
+      int one = -1;
+      field.countAirRun(path, bound, r.x0 + r.dx[k], r.y, r.z, zero, 1, &one);
+      if (counts[k] != naive || one != naive || field.countAir(bound, r.x0 + r.dx[k], r.y, r.z) != naive) {
         std::cerr << "bit-row count differs from the naive loop (" << alphaPathName(path) << ")\n";
         std::abort();
       }
@@ -122,14 +125,24 @@ void checkAgainstNaive(const WeatheredRock& w, const Bubble& bubble, const AirFi
 }
 
 void BM_AlphaRows(benchmark::State& state) {
+  const AlphaPath path = state.range(1) == 1 ? AlphaPath::Avx512 : AlphaPath::Portable;
+  if (!alphaPathAvailable(path)) {
+    state.SkipWithError("this CPU lacks AVX-512F/VPOPCNTDQ");
+    return;
+  }
   const WeatheredRock& w = weatheredCube();
   const Bubble bubble = makeSphereBubble(double(state.range(0)));
   const AirField field(w.rock, bubble.reach);
   const auto bound = field.bind(bubble);
-  checkAgainstNaive(w, bubble, field, bound, AlphaPath::Portable);
+  checkAgainstNaive(w, bubble, field, bound, path);
+  const std::uint8_t zero[1] = {0};
   for (auto _ : state) {
     long total = 0;
-    for (const auto& v : w.exposed) total += field.countAir(bound, v[0], v[1], v[2]);
+    int count = 0;
+    for (const auto& v : w.exposed) {
+      field.countAirRun(path, bound, v[0], v[1], v[2], zero, 1, &count);
+      total += count;
+    }
     benchmark::DoNotOptimize(total);
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(w.exposed.size()));
@@ -206,7 +219,7 @@ void BM_CycleFixedRock(benchmark::State& state) {
 }
 
 BENCHMARK(BM_AlphaNaive)->Arg(6)->Arg(19)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_AlphaRows)->Arg(6)->Arg(19)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AlphaRows)->Args({6, 0})->Args({6, 1})->Args({19, 0})->Args({19, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AlphaRuns)->Args({6, 0})->Args({6, 1})->Args({19, 0})->Args({19, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Cycle)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CycleWithDebris)->Args({128, 1})->Args({128, 2})->Iterations(20)->Unit(benchmark::kMillisecond);

@@ -20,7 +20,8 @@ namespace rockbake {
 // Which instructions count the bubble rows. Every path gives the same counts.
 //   Portable: one unaligned 64-bit load, mask and popcount per row piece.
 //   Avx512:   for runs of voxels along x, one load per row piece serves up to
-//             eight voxels, shifted and counted in the lanes of one register
+//             eight voxels, shifted and counted in the lanes of one register;
+//             a lone voxel gathers eight of its pieces into one register
 //             (AVX-512F + VPOPCNTDQ).
 // The default is Avx512 where the CPU (and OS) support it, else Portable. The
 // environment variable ROCKBAKE_ALPHA_PATH=portable|avx512 forces a path for
@@ -51,8 +52,9 @@ class AirField {
   // this field, once for each of the 8 bit phases (x mod 8) of the centre.
   struct BoundBubble {
     std::size_t pieces = 0;
-    std::vector<std::int32_t> byte_offset;  // [phase * pieces + i]: from the centre voxel's byte
-    std::vector<std::uint64_t> mask;        // [phase * pieces + i]: the piece's bits in that word
+    std::size_t stride = 0;                 // pieces rounded up to a multiple of 8 (empty masks after `pieces`)
+    std::vector<std::int32_t> byte_offset;  // [phase * stride + i]: from the centre voxel's byte
+    std::vector<std::uint64_t> mask;        // [phase * stride + i]: the piece's bits in that word
     int size = 0;                           // |B|
     double alpha_flat = 0.5;
   };
