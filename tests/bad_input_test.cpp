@@ -482,7 +482,7 @@ TEST(BadInput, GridTooLargeForTheProcessLimitIsRefusedAtResolution) {
 
 // A grid the memory guard lets through runs out of memory after the simulation, in the mesh stage, where
 // OpenVDB cannot always unwind (std::terminate): exit 1 with the sentence, no abort, nothing left behind.
-// rounded-cobble without its variation at 200 needs about 41 MiB for the simulation and 500 in all.
+// rounded-cobble without its variation at 200 needs about 42 MiB for the simulation and 500 in all.
 TEST(BadInput, OutOfMemoryMidRunIsExit1WithTheSentenceAndLeavesNothing) {
   SKIP_UNDER_ASAN();
   TempDir dir;
@@ -491,7 +491,7 @@ TEST(BadInput, OutOfMemoryMidRunIsExit1WithTheSentenceAndLeavesNothing) {
       runWithMemoryLimit(300 << 10, {"bake", preset, "--set", "shape.variation.amplitude=0", "--resolution", "200",
                                      "--no-render", "-o", (dir.path() / "out").string()});
   EXPECT_EQ(result.exit_status, 1) << result.output;
-  EXPECT_NE(result.output.find("error: out of memory: lower grid.resolution (200 needs about 41 MiB"),
+  EXPECT_NE(result.output.find("error: out of memory: lower grid.resolution (200 needs about 42 MiB"),
             std::string::npos)
       << result.output;
   EXPECT_EQ(result.output.find("terminate"), std::string::npos) << result.output;
@@ -512,7 +512,7 @@ TEST(BadInput, OutOfMemoryMidRunInALibraryLeavesNoHalfWrittenAsset) {
       300 << 10, {"library", (dir.path() / "lib.yaml").string(), "--set", "shape.variation.amplitude=0", "--resolution",
                   "200", "--no-render", "-o", out.string()});
   EXPECT_EQ(result.exit_status, 1) << result.output;
-  EXPECT_NE(result.output.find("out of memory: lower grid.resolution (200 needs about 41 MiB"), std::string::npos)
+  EXPECT_NE(result.output.find("out of memory: lower grid.resolution (200 needs about 42 MiB"), std::string::npos)
       << result.output;
   EXPECT_EQ(result.output.find("terminate"), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(out / "rounded-cobble" / "manifest.json"));

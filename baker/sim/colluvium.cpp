@@ -1,5 +1,6 @@
 #include "sim/colluvium.h"
 
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <numbers>
@@ -31,29 +32,67 @@ ColluviumModel::ColluviumModel(const GridLayout& layout, const ColluviumParams& 
       yield_units_(std::llround(params.yield * double(kUnit))),
       accumulator_(std::size_t(layout.nx) * std::size_t(layout.ny), 0) {}
 
-std::int64_t ColluviumModel::restingCell(const VoxelRock& rock, int x, int y, int z) const {
+void ColluviumModel::track(const VoxelRock& rock) {
+  if (tracking_) return;
   const GridLayout& g = layout_;
-  // From an occupied start (an earlier unit landed there) climb to the first air.
-  while (z < g.nz && !isAir(rock, x, y, z)) ++z;
+  column_words_ = std::size_t(g.nz + 63) / 64;
+  solid_.assign(std::size_t(g.nx) * std::size_t(g.ny) * column_words_, 0);
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (rock.material[g.index(x, y, z)] != Material::Air)
+          solid_[(std::size_t(x) + std::size_t(g.nx) * std::size_t(y)) * column_words_ + std::size_t(z) / 64] |=
+              std::uint64_t(1) << (z % 64);
+  tracking_ = true;
+}
+
+void ColluviumModel::setSolid(Cell c, bool solid) {
+  const std::size_t column = c % (std::size_t(layout_.nx) * std::size_t(layout_.ny));
+  const std::size_t z = c / (std::size_t(layout_.nx) * std::size_t(layout_.ny));
+  std::uint64_t& word = solid_[column * column_words_ + z / 64];
+  const std::uint64_t bit = std::uint64_t(1) << (z % 64);
+  word = solid ? (word | bit) : (word & ~bit);
+}
+
+void ColluviumModel::noteChanged(const VoxelRock& rock, const std::vector<Cell>& cells) {
+  if (!tracking_) return;  // made from the rock as it is on first use
+  for (Cell c : cells) setSolid(c, rock.material[c] != Material::Air);
+}
+
+std::int64_t ColluviumModel::restingCell(int x, int y, int z) const {
+  const GridLayout& g = layout_;
+  const std::uint64_t* column = solid_.data() + (std::size_t(x) + std::size_t(g.nx) * std::size_t(y)) * column_words_;
+  // From an occupied start (an earlier unit landed there) climb to the first
+  // air: the lowest clear bit at or above z (the bits past nz are clear).
+  std::size_t word = std::size_t(z) / 64;
+  std::uint64_t air = ~column[word] & (~std::uint64_t(0) << (z % 64));
+  while (air == 0 && ++word < column_words_) air = ~column[word];
+  if (air == 0) return -1;
+  z = int(word * 64) + std::countr_zero(air);
   if (z >= g.nz) return -1;
-  while (z > 0 && isAir(rock, x, y, z - 1)) --z;
-  if (z == 0 && isAir(rock, x, y, -1)) return -1;  // no ground: nothing to land on
-  return std::int64_t(g.index(x, y, z));
+  // Then fall to the highest solid cell below it and rest on top of it.
+  std::uint64_t below = z % 64 ? column[word] & ((std::uint64_t(1) << (z % 64)) - 1) : 0;
+  while (below == 0 && word > 0) below = column[--word];
+  if (below != 0) return std::int64_t(g.index(x, y, int(word * 64) + 63 - std::countl_zero(below) + 1));
+  if (!g.ground) return -1;  // nothing to land on
+  return std::int64_t(g.index(x, y, 0));
 }
 
 std::size_t ColluviumModel::deposit(VoxelRock& rock, const std::vector<Cell>& decimated, std::vector<Cell>& changed,
                                     std::vector<Cell>& unstable) {
   const GridLayout& g = layout_;
+  track(rock);
   std::size_t created = 0;
   for (Cell c : decimated) {  // in cell order: deterministic
     const VoxelCoord p = g.coord(c);
     std::int64_t& acc = accumulator_[std::size_t(p.x) + std::size_t(g.nx) * std::size_t(p.y)];
     acc += yield_units_;
     while (acc >= kUnit) {
-      const std::int64_t landing = restingCell(rock, p.x, p.y, p.z);
+      const std::int64_t landing = restingCell(p.x, p.y, p.z);
       if (landing < 0) break;  // the unit waits in the accumulator
       acc -= kUnit;
       rock.material[std::size_t(landing)] = Material::Colluvium;
+      setSolid(Cell(landing), true);
       rock.durability.set(std::size_t(landing), 0.f);
       changed.push_back(Cell(landing));
       unstable.push_back(Cell(landing));
@@ -68,6 +107,7 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
                                    std::vector<Cell>& unstable) {
   if (params_.removal <= 0.0) return 0;
   const GridLayout& g = layout_;
+  track(rock);
   // Decide from the state before any removal, so the order does not matter.
   std::vector<Cell> carried;
   for (Cell c : colluvium_cells) {
@@ -81,6 +121,7 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
   }
   for (Cell c : carried) {
     rock.material[c] = Material::Air;
+    setSolid(c, false);
     changed.push_back(c);
     vacated.push_back(c);
     const VoxelCoord p = g.coord(c);
@@ -96,10 +137,11 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
 void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
                             std::vector<Cell>& vacated) {
   const GridLayout& g = layout_;
+  track(rock);
   // Where the colluvium voxel at p goes next, or -1 when it is stable.
   const auto nextCell = [&](const VoxelCoord& p) -> std::int64_t {
-    if (p.z > 0 && isAir(rock, p.x, p.y, p.z - 1)) return restingCell(rock, p.x, p.y, p.z - 1);  // it falls
-    if (!isAir(rock, p.x, p.y, p.z + 1)) return -1;  // covered: held in place
+    if (p.z > 0 && isAir(rock, p.x, p.y, p.z - 1)) return restingCell(p.x, p.y, p.z - 1);  // it falls
+    if (!isAir(rock, p.x, p.y, p.z + 1)) return -1;                                        // covered: held in place
     // Top of a pile: slide to the neighbour column where it rests lowest, if
     // that drop is steeper than the talus angle allows.
     std::int64_t target = -1;
@@ -107,7 +149,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     for (const auto& col : kColumns) {
       const int x = p.x + col[0], y = p.y + col[1];
       if (!g.contains(x, y, p.z) || !isAir(rock, x, y, p.z)) continue;
-      const std::int64_t rest = restingCell(rock, x, y, p.z);
+      const std::int64_t rest = restingCell(x, y, p.z);
       if (rest < 0) continue;
       const int rest_z = g.coord(Cell(rest)).z;
       const double distance = (col[0] != 0 && col[1] != 0) ? std::numbers::sqrt2 : 1.0;
@@ -131,6 +173,8 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     for (std::int64_t next = nextCell(g.coord(at)); next >= 0; next = nextCell(g.coord(at))) {
       rock.material[std::size_t(next)] = Material::Colluvium;
       rock.material[at] = Material::Air;
+      setSolid(Cell(next), true);
+      setSolid(at, false);
       at = Cell(next);
     }
     if (at == start) continue;

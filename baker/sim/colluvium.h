@@ -35,6 +35,11 @@ class ColluviumModel {
                      std::vector<Cell>& vacated, std::vector<Cell>& unstable);
   // Moves colluvium until every pile is stable; `unstable` is consumed.
   void settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed, std::vector<Cell>& vacated);
+  // The model keeps its own record of which cells are solid, made from the
+  // rock on its first deposit, remove or settle. Every later change to
+  // rock.material made elsewhere (decimation, rockfall) must be noted here
+  // before the model is used again.
+  void noteChanged(const VoxelRock& rock, const std::vector<Cell>& cells);
 
   // Fractional units waiting in the accumulators (for conservation checks).
   double pendingUnits() const;
@@ -47,7 +52,9 @@ class ColluviumModel {
 
  private:
   // The cell a unit dropped at (x, y) from height z comes to rest in, or -1.
-  std::int64_t restingCell(const VoxelRock& rock, int x, int y, int z) const;
+  std::int64_t restingCell(int x, int y, int z) const;
+  void track(const VoxelRock& rock);  // builds solid_ on first use
+  void setSolid(Cell c, bool solid);
 
   GridLayout layout_;
   ColluviumParams params_;
@@ -55,6 +62,11 @@ class ColluviumModel {
   double talus_slope_;                     // tan(talus_angle)
   std::int64_t yield_units_;               // yield in accumulator units
   std::vector<std::int64_t> accumulator_;  // per (x, y) column
+  // Solid (not air) cells, one bit per z in each (x, y) column: a unit's
+  // fall down a column is a bit scan instead of a cache miss per cell.
+  std::vector<std::uint64_t> solid_;  // [(x + nx y) column_words_ + z / 64]; bits past nz are 0
+  std::size_t column_words_ = 0;
+  bool tracking_ = false;
 };
 
 }  // namespace rockbake

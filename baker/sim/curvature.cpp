@@ -116,22 +116,27 @@ __attribute__((target("avx512f,avx512vpopcntdq"))) int countOneAvx512(const AirF
                                                                       const unsigned char* base, int phase) {
   const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.stride;
   const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.stride;
-  __m512i acc0 = _mm512_setzero_si512(), acc1 = _mm512_setzero_si512();
+  // Masked forms with a zero source: the plain ones trip GCC 12's -Wuninitialized.
+  const __m512i zero = _mm512_setzero_si512();
+  const __mmask8 all = 0xFF;
+  __m512i acc0 = zero, acc1 = zero;
   std::size_t i = 0;
   for (; i + 16 <= b.stride; i += 16) {
     const __m256i o0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i));
     const __m256i o1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i + 8));
-    const __m512i w0 = _mm512_i32gather_epi64(o0, base, 1);
-    const __m512i w1 = _mm512_i32gather_epi64(o1, base, 1);
+    const __m512i w0 = _mm512_mask_i32gather_epi64(zero, all, o0, base, 1);
+    const __m512i w1 = _mm512_mask_i32gather_epi64(zero, all, o1, base, 1);
     acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(w0, _mm512_loadu_si512(mask + i))));
     acc1 = _mm512_add_epi64(acc1, _mm512_popcnt_epi64(_mm512_and_si512(w1, _mm512_loadu_si512(mask + i + 8))));
   }
   if (i < b.stride) {
     const __m256i o0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i));
-    const __m512i w0 = _mm512_i32gather_epi64(o0, base, 1);
+    const __m512i w0 = _mm512_mask_i32gather_epi64(zero, all, o0, base, 1);
     acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(w0, _mm512_loadu_si512(mask + i))));
   }
-  return int(_mm512_reduce_add_epi64(_mm512_add_epi64(acc0, acc1)));
+  alignas(64) std::int64_t lanes[8];
+  _mm512_store_si512(lanes, _mm512_add_epi64(acc0, acc1));
+  return int(lanes[0] + lanes[1] + lanes[2] + lanes[3] + lanes[4] + lanes[5] + lanes[6] + lanes[7]);
 }
 #endif
 

@@ -39,12 +39,16 @@ std::uint64_t estimateSimulationBytes(const GridLayout& layout) {
   const std::uint64_t domain = inner(layout.nx, 2) * inner(layout.ny, 2) * inner(layout.nz, 1);
   const std::uint64_t apron = std::uint64_t(layout.margin);
   const std::uint64_t field_bits = (layout.nx + 2 * apron + 128) * (layout.ny + 2 * apron) * (layout.nz + 2 * apron);
+  // Colluvium's solid cells, a bit a cell in columns of whole 64-bit words.
+  const std::uint64_t column_bytes =
+      std::uint64_t(layout.nx) * std::uint64_t(layout.ny) * std::uint64_t((layout.nz + 63) / 64) * 8;
   // material (1 byte a cell); integrity and durability (4 + 4 bytes a rock
   // cell, at most the domain, plus a span header per row for each); the air
   // field; five bit planes (exposed, colluvium, and rockfall's visited,
-  // removed and clustered marks); work lists for the exposed voxels, at most
-  // about a tenth of the domain at once (cell, flag and counts: 16 bytes).
-  return cells + domain * 8 + rows * 2 * 32 + field_bits / 8 + cells * 5 / 8 + domain / 10 * 16;
+  // removed and clustered marks) and colluvium's columns; work lists for the
+  // exposed voxels, at most about a tenth of the domain at once (cell, flag
+  // and counts: 16 bytes).
+  return cells + domain * 8 + rows * 2 * 32 + field_bits / 8 + cells * 5 / 8 + column_bytes + domain / 10 * 16;
 }
 
 std::uint64_t estimateSimulationBytes(const SimParams& params) {

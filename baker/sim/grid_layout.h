@@ -16,8 +16,8 @@ GridLayout computeGridLayout(const SimParams& params);
 
 // Bytes the simulation needs for a layout, at most: materials (a byte a cell),
 // integrity and durability over the whole domain (the margin holds no rock),
-// the bit planes and work lists. The memory guard compares it with the
-// machine's memory before allocating.
+// the bit planes (colluvium's solid columns among them) and work lists. The
+// memory guard compares it with the machine's memory before allocating.
 std::uint64_t estimateSimulationBytes(const GridLayout& layout);
 
 // The same for a preset's parameters, with what the start adds: the signed

@@ -387,6 +387,7 @@ CycleStats WeatheringSimulation::step() {
     rock.material[c] = Material::Air;
     rock.durability.set(c, 0.f);
   }
+  if (st.colluviumOn()) st.colluvium_model.noteChanged(rock, decimated);
   CycleStats stats;
   stats.curvature_seconds = secondsSince(phase_start);
   stats.exposed = cells.size();
@@ -431,6 +432,7 @@ CycleStats WeatheringSimulation::step() {
       stats.fallen += fall.fallen;
       stats.crumbled += fall.crumbled;
       changed.insert(changed.end(), fall.changed.begin(), fall.changed.end());
+      if (st.colluviumOn()) st.colluvium_model.noteChanged(rock, fall.changed);
       if (fall.fallen == 0 || fall.crumbled == 0 || !st.colluviumOn()) break;
       for (Cell c : fall.changed)
         if (rock.material[c] == Material::Colluvium) unstable.push_back(c);
