@@ -10,6 +10,8 @@
 # since gained (`--set shape.variation=null --set durability.joints=null`).
 # BASELINE_PRESET (environment) is the goblin preset the baseline reads, for a
 # baseline that predates those keys (default presets/goblin.yaml).
+# PREVIOUS_ROCKBAKE (environment), when set, is a second build to compare
+# against (say, the previous commit's), baked after the baseline at 2 threads.
 # Runs, one after another (run it alone on the machine):
 #   baseline and this build at 2 threads (RESOLUTION); then at
 #   SCALING_RESOLUTION this build at 2 threads and at 1 thread, and two copies
@@ -52,8 +54,16 @@ PY
 
 bake baseline "$baseline" 2
 report baseline
+if [ -n "${PREVIOUS_ROCKBAKE:-}" ]; then
+  bake previous "$PREVIOUS_ROCKBAKE" 2
+  report previous
+fi
 bake current "$current" 2
 report current
+if [ -n "${PREVIOUS_ROCKBAKE:-}" ]; then
+  cmp -s "$out/previous/goblin/rock.vdb" "$out/current/goblin/rock.vdb" &&
+    echo "rock.vdb: byte-identical to the previous build's" || echo "rock.vdb: DIFFERS from the previous build's"
+fi
 if cmp -s "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb"; then
   echo "rock.vdb: byte-identical to the baseline's"
 elif build/bench/rockbake_vdb_same "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb" > /dev/null; then
