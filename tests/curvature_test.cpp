@@ -83,9 +83,10 @@ TEST(AirField, CountsEqualTheNaiveLoopForEveryBubbleKind) {
   }
 }
 
-// Runs of voxels along x, on one α path, against the naive loop: random
-// grids, every bubble kind, rows shorter and longer than one load's piece
-// (a long row is cut into pieces of AirField::kMaxPiece cells), ground on/off.
+// Runs of voxels along x, and every voxel alone, on one α path, against the
+// naive loop: random grids, every bubble kind, rows shorter and longer than
+// one load's piece (a long row is cut into pieces of AirField::kMaxPiece
+// cells), piece counts that are and are not multiples of 8, ground on/off.
 void expectRunsEqualTheNaiveLoop(AlphaPath path) {
   std::vector<NamedBubble> bubbles = allBubbleKinds();
   bubbles.push_back({"long ellipsoid (rows up to 61)", makeEllipsoidBubble({30.5, 2.0, 1.5})});
@@ -112,6 +113,12 @@ void expectRunsEqualTheNaiveLoop(AlphaPath path) {
               ASSERT_EQ(counts[k], naiveCountAir(rock, bubble, x0 + dx[k], y, z))
                   << alphaPathName(path) << ", " << name << " at " << x0 + dx[k] << "," << y << "," << z << " (run of "
                   << n << " from " << x0 << ") ground=" << ground;
+            // The voxel alone (on the AVX-512 path: its pieces gathered eight at a time).
+            const std::uint8_t alone[1] = {0};
+            field.countAirRun(path, bound, x0, y, z, alone, 1, counts);
+            ASSERT_EQ(counts[0], naiveCountAir(rock, bubble, x0, y, z))
+                << alphaPathName(path) << ", " << name << " at " << x0 << "," << y << "," << z
+                << " alone, ground=" << ground;
           }
     }
   }
