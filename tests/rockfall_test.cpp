@@ -221,6 +221,28 @@ TEST(Rockfall, NothingFloatsAfterAnyCycle) {
   EXPECT_GT(total_fallen, 0u) << "the property test should include real rockfalls";
 }
 
+// The model keeps its own record of which cells are solid; changes made
+// elsewhere reach it through noteChanged. A unit dropped down a column lands
+// on what is there now, not on what was there when the record was made.
+TEST(Colluvium, UnitsLandOnTheRockAsItIsAfterChangesAreNoted) {
+  VoxelRock rock = emptyRock(9, 9, 20);
+  fill(rock, {4, 4, 0}, {5, 5, 10}, Material::Rock);  // a pillar 10 cells tall
+  ColluviumModel model(rock.layout, {1.0, 35.0, 0.0}, 1);
+  const Cell above = Cell(rock.layout.index(4, 4, 15));
+  std::vector<Cell> changed, unstable;
+  ASSERT_EQ(model.deposit(rock, {above}, changed, unstable), 1u);
+  EXPECT_EQ(changed.back(), Cell(rock.layout.index(4, 4, 10)));  // on the pillar's top
+  // The pillar's upper half and the unit on it go, as a fall would take them.
+  std::vector<Cell> gone;
+  for (int z = 5; z <= 10; ++z) {
+    gone.push_back(Cell(rock.layout.index(4, 4, z)));
+    rock.material[gone.back()] = Material::Air;
+  }
+  model.noteChanged(rock, gone);
+  ASSERT_EQ(model.deposit(rock, {above}, changed, unstable), 1u);
+  EXPECT_EQ(changed.back(), Cell(rock.layout.index(4, 4, 5)));  // on the shortened pillar
+}
+
 TEST(Rockfall, TheCapOfAWeatheredNeckFallsThroughTheSimulation) {
   const Preset p = neckPreset(1, RockfallMode::Drop);
   const WeatheringResult result = weatherRock(buildInitialRock(resolveShape(p), p), p);
