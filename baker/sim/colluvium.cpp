@@ -41,17 +41,21 @@ void ColluviumModel::track(const VoxelRock& rock) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x)
         if (rock.material[g.index(x, y, z)] != Material::Air)
-          solid_[(std::size_t(x) + std::size_t(g.nx) * std::size_t(y)) * column_words_ + std::size_t(z) / 64] |=
-              std::uint64_t(1) << (z % 64);
+          column(std::size_t(x) + std::size_t(g.nx) * std::size_t(y))[z / 64] |= std::uint64_t(1) << (z % 64);
   tracking_ = true;
 }
 
 void ColluviumModel::setSolid(Cell c, bool solid) {
-  const std::size_t column = c % (std::size_t(layout_.nx) * std::size_t(layout_.ny));
-  const std::size_t z = c / (std::size_t(layout_.nx) * std::size_t(layout_.ny));
-  std::uint64_t& word = solid_[column * column_words_ + z / 64];
+  const std::size_t plane = std::size_t(layout_.nx) * std::size_t(layout_.ny);
+  const std::size_t z = c / plane;
+  std::uint64_t& word = column(c % plane)[z / 64];
   const std::uint64_t bit = std::uint64_t(1) << (z % 64);
   word = solid ? (word | bit) : (word & ~bit);
+}
+
+void ColluviumModel::setMaterial(VoxelRock& rock, Cell c, Material m) {
+  rock.material[c] = m;
+  setSolid(c, m != Material::Air);
 }
 
 void ColluviumModel::noteChanged(const VoxelRock& rock, const std::vector<Cell>& cells) {
@@ -61,18 +65,18 @@ void ColluviumModel::noteChanged(const VoxelRock& rock, const std::vector<Cell>&
 
 std::int64_t ColluviumModel::restingCell(int x, int y, int z) const {
   const GridLayout& g = layout_;
-  const std::uint64_t* column = solid_.data() + (std::size_t(x) + std::size_t(g.nx) * std::size_t(y)) * column_words_;
+  const std::uint64_t* bits = column(std::size_t(x) + std::size_t(g.nx) * std::size_t(y));
   // From an occupied start (an earlier unit landed there) climb to the first
   // air: the lowest clear bit at or above z (the bits past nz are clear).
   std::size_t word = std::size_t(z) / 64;
-  std::uint64_t air = ~column[word] & (~std::uint64_t(0) << (z % 64));
-  while (air == 0 && ++word < column_words_) air = ~column[word];
+  std::uint64_t air = ~bits[word] & (~std::uint64_t(0) << (z % 64));
+  while (air == 0 && ++word < column_words_) air = ~bits[word];
   if (air == 0) return -1;
   z = int(word * 64) + std::countr_zero(air);
   if (z >= g.nz) return -1;
   // Then fall to the highest solid cell below it and rest on top of it.
-  std::uint64_t below = z % 64 ? column[word] & ((std::uint64_t(1) << (z % 64)) - 1) : 0;
-  while (below == 0 && word > 0) below = column[--word];
+  std::uint64_t below = z % 64 ? bits[word] & ((std::uint64_t(1) << (z % 64)) - 1) : 0;
+  while (below == 0 && word > 0) below = bits[--word];
   if (below != 0) return std::int64_t(g.index(x, y, int(word * 64) + 63 - std::countl_zero(below) + 1));
   if (!g.ground) return -1;  // nothing to land on
   return std::int64_t(g.index(x, y, 0));
@@ -91,8 +95,7 @@ std::size_t ColluviumModel::deposit(VoxelRock& rock, const std::vector<Cell>& de
       const std::int64_t landing = restingCell(p.x, p.y, p.z);
       if (landing < 0) break;  // the unit waits in the accumulator
       acc -= kUnit;
-      rock.material[std::size_t(landing)] = Material::Colluvium;
-      setSolid(Cell(landing), true);
+      setMaterial(rock, Cell(landing), Material::Colluvium);
       rock.durability.set(std::size_t(landing), 0.f);
       changed.push_back(Cell(landing));
       unstable.push_back(Cell(landing));
@@ -120,8 +123,7 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
       carried.push_back(c);
   }
   for (Cell c : carried) {
-    rock.material[c] = Material::Air;
-    setSolid(c, false);
+    setMaterial(rock, c, Material::Air);
     changed.push_back(c);
     vacated.push_back(c);
     const VoxelCoord p = g.coord(c);
@@ -171,10 +173,8 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     // through are held only for this moment, so leaving them disturbs nothing.
     Cell at = start;
     for (std::int64_t next = nextCell(g.coord(at)); next >= 0; next = nextCell(g.coord(at))) {
-      rock.material[std::size_t(next)] = Material::Colluvium;
-      rock.material[at] = Material::Air;
-      setSolid(Cell(next), true);
-      setSolid(at, false);
+      setMaterial(rock, Cell(next), Material::Colluvium);
+      setMaterial(rock, at, Material::Air);
       at = Cell(next);
     }
     if (at == start) continue;

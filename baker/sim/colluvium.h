@@ -54,7 +54,12 @@ class ColluviumModel {
   // The cell a unit dropped at (x, y) from height z comes to rest in, or -1.
   std::int64_t restingCell(int x, int y, int z) const;
   void track(const VoxelRock& rock);  // builds solid_ on first use
+  // The bits of column x + nx y, z upwards.
+  std::uint64_t* column(std::size_t xy) { return solid_.data() + xy * column_words_; }
+  const std::uint64_t* column(std::size_t xy) const { return solid_.data() + xy * column_words_; }
   void setSolid(Cell c, bool solid);
+  // How the model changes the rock: the material and its record together.
+  void setMaterial(VoxelRock& rock, Cell c, Material m);
 
   GridLayout layout_;
   ColluviumParams params_;
