@@ -65,8 +65,8 @@ inline std::uint64_t loadWord(const unsigned char* p) {
 // The portable run: one load per piece, each voxel's window shifted out of it.
 void countRunPortable(const AirField::BoundBubble& b, const unsigned char* base, int phase, const std::uint8_t* dx,
                       int n, int* out) {
-  const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.stride;
-  const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.stride;
+  const std::int32_t* offset = b.offsets(std::size_t(phase));
+  const std::uint64_t* mask = b.masks(std::size_t(phase));
   int acc[AirField::kRunWidth] = {};
   for (std::size_t i = 0; i < b.pieces; ++i) {
     const std::uint64_t w = loadWord(base + offset[i]);
@@ -82,8 +82,8 @@ void countRunPortable(const AirField::BoundBubble& b, const unsigned char* base,
 __attribute__((target("avx512f,avx512vpopcntdq"))) void countRunAvx512(const AirField::BoundBubble& b,
                                                                        const unsigned char* base, int phase,
                                                                        const std::uint8_t* dx, int n, int* out) {
-  const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.stride;
-  const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.stride;
+  const std::int32_t* offset = b.offsets(std::size_t(phase));
+  const std::uint64_t* mask = b.masks(std::size_t(phase));
   std::uint64_t lane_dx[AirField::kRunWidth] = {};
   for (int k = 0; k < n; ++k) lane_dx[k] = dx[k];
   const __m512i shift = _mm512_loadu_si512(lane_dx);
@@ -114,14 +114,15 @@ __attribute__((target("avx512f,avx512vpopcntdq"))) void countRunAvx512(const Air
 // padded to a multiple of 8 pieces with empty masks.
 __attribute__((target("avx512f,avx512vpopcntdq"))) int countOneAvx512(const AirField::BoundBubble& b,
                                                                       const unsigned char* base, int phase) {
-  const std::int32_t* offset = b.byte_offset.data() + std::size_t(phase) * b.stride;
-  const std::uint64_t* mask = b.mask.data() + std::size_t(phase) * b.stride;
+  const std::int32_t* offset = b.offsets(std::size_t(phase));
+  const std::uint64_t* mask = b.masks(std::size_t(phase));
   // Masked forms with a zero source: the plain ones trip GCC 12's -Wuninitialized.
   const __m512i zero = _mm512_setzero_si512();
   const __mmask8 all = 0xFF;
   __m512i acc0 = zero, acc1 = zero;
+  const std::size_t stride = b.stride();
   std::size_t i = 0;
-  for (; i + 16 <= b.stride; i += 16) {
+  for (; i + 16 <= stride; i += 16) {
     const __m256i o0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i));
     const __m256i o1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i + 8));
     const __m512i w0 = _mm512_mask_i32gather_epi64(zero, all, o0, base, 1);
@@ -129,7 +130,7 @@ __attribute__((target("avx512f,avx512vpopcntdq"))) int countOneAvx512(const AirF
     acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(w0, _mm512_loadu_si512(mask + i))));
     acc1 = _mm512_add_epi64(acc1, _mm512_popcnt_epi64(_mm512_and_si512(w1, _mm512_loadu_si512(mask + i + 8))));
   }
-  if (i < b.stride) {
+  if (i < stride) {
     const __m256i o0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + i));
     const __m512i w0 = _mm512_mask_i32gather_epi64(zero, all, o0, base, 1);
     acc0 = _mm512_add_epi64(acc0, _mm512_popcnt_epi64(_mm512_and_si512(w0, _mm512_loadu_si512(mask + i))));
@@ -204,18 +205,17 @@ AirField::BoundBubble AirField::bind(const Bubble& bubble) const {
       pieces.push_back({rows_away * std::int64_t(words_per_row_) * 8, x, std::min(kMaxPiece, row.x_max - x + 1)});
   }
   bound.pieces = pieces.size();
-  bound.stride = (pieces.size() + 7) / 8 * 8;
   // The padding pieces read the centre's byte through an empty mask.
-  bound.byte_offset.assign(8 * bound.stride, 0);
-  bound.mask.assign(8 * bound.stride, 0);
+  bound.byte_offset.assign(8 * bound.stride(), 0);
+  bound.mask.assign(8 * bound.stride(), 0);
   for (int phase = 0; phase < 8; ++phase)
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       // The centre's bit is 8 B + phase; the piece starts at bit 8 B + phase + x_min.
       const int first = phase + pieces[i].x_min;
       const std::int64_t offset = pieces[i].row_bytes + (first >> 3);  // floor division
       if (offset < INT32_MIN || offset > INT32_MAX) throw std::length_error("air field too large for 32-bit offsets");
-      bound.byte_offset[std::size_t(phase) * bound.stride + i] = std::int32_t(offset);
-      bound.mask[std::size_t(phase) * bound.stride + i] = ((std::uint64_t(1) << pieces[i].length) - 1) << (first & 7);
+      bound.byte_offset[std::size_t(phase) * bound.stride() + i] = std::int32_t(offset);
+      bound.mask[std::size_t(phase) * bound.stride() + i] = ((std::uint64_t(1) << pieces[i].length) - 1) << (first & 7);
     }
   return bound;
 }
@@ -224,8 +224,8 @@ int AirField::countAir(const BoundBubble& bubble, int x, int y, int z) const {
   const int bit = x + x_pad_bits_;
   const unsigned char* base = reinterpret_cast<const unsigned char*>(rowWords(y, z)) + (bit >> 3);
   const std::size_t phase = std::size_t(bit & 7);
-  const std::int32_t* offset = bubble.byte_offset.data() + phase * bubble.stride;
-  const std::uint64_t* mask = bubble.mask.data() + phase * bubble.stride;
+  const std::int32_t* offset = bubble.offsets(phase);
+  const std::uint64_t* mask = bubble.masks(phase);
   // Two sums, so consecutive pieces do not wait on each other.
   int air0 = 0, air1 = 0;
   std::size_t i = 0;

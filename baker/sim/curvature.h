@@ -52,11 +52,15 @@ class AirField {
   // this field, once for each of the 8 bit phases (x mod 8) of the centre.
   struct BoundBubble {
     std::size_t pieces = 0;
-    std::size_t stride = 0;                 // pieces rounded up to a multiple of 8 (empty masks after `pieces`)
-    std::vector<std::int32_t> byte_offset;  // [phase * stride + i]: from the centre voxel's byte
-    std::vector<std::uint64_t> mask;        // [phase * stride + i]: the piece's bits in that word
+    std::vector<std::int32_t> byte_offset;  // [phase * stride() + i]: from the centre voxel's byte
+    std::vector<std::uint64_t> mask;        // [phase * stride() + i]: the piece's bits in that word
     int size = 0;                           // |B|
     double alpha_flat = 0.5;
+
+    // Each phase's table holds `pieces` rounded up to a multiple of 8 (empty masks after `pieces`).
+    std::size_t stride() const { return (pieces + 7) / 8 * 8; }
+    const std::int32_t* offsets(std::size_t phase) const { return byte_offset.data() + phase * stride(); }
+    const std::uint64_t* masks(std::size_t phase) const { return mask.data() + phase * stride(); }
   };
   BoundBubble bind(const Bubble& bubble) const;
 
