@@ -28,6 +28,20 @@ double dot(const Vec& a, const Vec& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+// The piece (triangles connected through shared vertices) of every vertex,
+// named by one of its vertices (union-find).
+std::vector<std::uint32_t> pieceOfVertex(const SurfaceMesh& m) {
+  std::vector<std::uint32_t> parent(m.positions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& t : m.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
+  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = find(v);
+  return parent;
+}
+
 }  // namespace
 
 MeshDefects checkMesh(const SurfaceMesh& m) {
@@ -87,28 +101,21 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
   sortUnique(d.open_edge_vertices);
   d.defect_vertices.insert(d.defect_vertices.end(), d.open_edge_vertices.begin(), d.open_edge_vertices.end());
   sortUnique(d.defect_vertices);
-  // Components through shared vertices (union-find).
-  std::vector<std::uint32_t> parent(m.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  // Components through shared vertices.
+  const std::vector<std::uint32_t> piece = pieceOfVertex(m);
   std::vector<char> used(m.positions.size(), 0);
-  for (const auto& t : m.triangles) {
+  for (const auto& t : m.triangles)
     for (int k = 0; k < 3; ++k) used[t[k]] = 1;
-    parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  }
-  for (std::uint32_t v = 0; v < parent.size(); ++v) d.components += used[v] && find(v) == v;
+  for (std::uint32_t v = 0; v < piece.size(); ++v) d.components += used[v] && piece[v] == v;
   std::unordered_map<std::uint32_t, double> volume_of;
   for (const auto& t : m.triangles) {
     const auto& p = m.positions[t[0]];
     const auto& q = m.positions[t[1]];
     const auto& r = m.positions[t[2]];
-    volume_of[find(t[0])] += (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-                              double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-                              double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-                             6.0;
+    volume_of[piece[t[0]]] += (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
+                               double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
+                               double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
+                              6.0;
   }
   for (const auto& [root, volume] : volume_of) d.shells += volume > 0;
   d.volume = signedVolume(m);
@@ -408,24 +415,18 @@ std::size_t relaxFoldOvers(SurfaceMesh& mesh) {
 
 std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles) {
   const std::size_t nt = mesh.triangles.size();
-  std::vector<std::uint32_t> parent(mesh.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& t : mesh.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
+  const std::vector<std::uint32_t> piece = pieceOfVertex(mesh);
   std::vector<std::size_t> size(mesh.positions.size(), 0);
   std::vector<char> defective_piece(mesh.positions.size(), 0);
   const FlipMesh fm(mesh);
   for (std::uint32_t t = 0; t < nt; ++t) {
-    const std::uint32_t root = find(mesh.triangles[t][0]);
+    const std::uint32_t root = piece[mesh.triangles[t][0]];
     ++size[root];
     if (fm.defective(t)) defective_piece[root] = 1;
   }
   std::size_t dropped = 0;
   for (auto& t : mesh.triangles) {
-    const std::uint32_t root = find(t[0]);
+    const std::uint32_t root = piece[t[0]];
     if (defective_piece[root] && size[root] <= max_triangles) {
       t = {t[0], t[0], t[0]};  // dropped by compact()
       ++dropped;
