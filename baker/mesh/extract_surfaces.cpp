@@ -84,10 +84,11 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
     const auto keepSide = [&](const openvdb::Coord& c, float v, bool inside, auto&& set) {
       // Colluvium's voxel-thin parts (a lone voxel, a one-voxel veneer on a
       // face) are left to the smoothing: held, they stand as plates and slits.
-      if ((inside ? v > 0 : v < 0) && material != Material::Rock) return;
-      if (inside && v > -margin) set(v > 0 ? -thin : -margin);
-      if (!inside && v < margin) set(v < 0 ? thin : margin);
-      if (inside ? v > 0 : v < 0) crossed.push_back({c, inside});
+      const bool moved_across = inside ? v > 0 : v < 0;
+      if (moved_across && material != Material::Rock) return;
+      if (inside && v > -margin) set(moved_across ? -thin : -margin);
+      if (!inside && v < margin) set(moved_across ? thin : margin);
+      if (moved_across) crossed.push_back({c, inside});
     };
     for (auto it = sdf->tree().beginValueOn(); it; ++it)
       keepSide(it.getCoord(), *it, materialAt(it.getCoord()), [&](float v) { it.setValue(v); });

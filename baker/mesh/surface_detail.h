@@ -13,8 +13,9 @@
 // not move, and no vertex is pushed below z = 0. Where the displacement would
 // fold the surface (a triangle turned over or against a neighbour, or
 // collapsed), it is halved at that triangle's corners, repeatedly, and dropped
-// there if that is not enough: a clean input stays free of fold-overs. The result is a pure function
-// of the mesh and the parameters (byte-identical at any thread count).
+// there if that is not enough: a clean input stays free of fold-overs. The
+// result is a pure function of the mesh and the parameters (byte-identical at
+// any thread count).
 #pragma once
 
 #include <cstdint>
