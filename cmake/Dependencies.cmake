@@ -9,7 +9,7 @@ find_package(spdlog REQUIRED)
 find_package(fmt REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(PNG REQUIRED)
-# Libraries (SPEC §5): SHA-256 for manifests (OpenSSL's libcrypto); FreeType
+# Libraries (docs/libraries.md): SHA-256 for manifests (OpenSSL's libcrypto); FreeType
 # draws the names on contact sheets, in DejaVu Sans (fonts-dejavu-core).
 find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 find_package(Freetype REQUIRED)
@@ -40,7 +40,7 @@ if(ROCKBAKE_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
 
-# Rendering (SPEC §4): OpenEXR's own CMake config; OpenColorIO through
+# Rendering (docs/rendering.md): OpenEXR's own CMake config; OpenColorIO through
 # pkg-config, because its CMake package computes a wrong prefix on Debian.
 find_package(OpenEXR CONFIG REQUIRED)
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)

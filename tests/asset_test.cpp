@@ -1,4 +1,4 @@
-// Assets a studio would ship (SPEC §3, §4): LOD0 within its error bound, LOD
+// Assets a studio would ship (docs/meshes.md, docs/rendering.md): LOD0 within its error bound, LOD
 // chains as triangle counts, surface detail, faithful volume and connectivity,
 // fold-over repair, the pivot, asset.json.
 #include <gtest/gtest.h>

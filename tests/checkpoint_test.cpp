@@ -1,4 +1,4 @@
-// Checkpoints and resume (SPEC §5), through the real executable: a resumed
+// Checkpoints and resume (docs/libraries.md), through the real executable: a resumed
 // bake equals the uninterrupted one byte for byte; an edit at the checkpoint
 // equals the same keyframe baked from the start; grid, shape, seed and
 // resolution cannot change; a truncated, corrupt or foreign file is a clear error,

@@ -1,4 +1,4 @@
-// The command line end to end, with the real executable (SPEC §6).
+// The command line end to end, with the real executable (docs/command-line.md).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -81,7 +81,7 @@ TEST(Cli, OverridesReachTheSimulation) {
   EXPECT_EQ(stats["preset"]["bubbles"][0]["cavernous"], 0.7);
 }
 
-// SPEC §2.10: same preset and seed → byte-identical outputs at any thread count.
+// docs/model.md §10: same preset and seed → byte-identical outputs at any thread count.
 // goblin: noise, two bubble bands, a collection, an image; hoodoo-cap: a cap
 // that falls (drop) and colluvium with removal; talus-cliff: crumbling rockfall.
 // Their geology: goblin and hoodoo-cap jointed, talus-cliff's dipping beds,

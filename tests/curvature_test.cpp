@@ -1,4 +1,4 @@
-// Bubble counts and calibrated exposure (SPEC §2.3).
+// Bubble counts and calibrated exposure (docs/model.md §3).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -48,7 +48,7 @@ TEST(Bubble, OffsetsAreSymmetricAndContainTheCentre) {
 }
 
 TEST(Bubble, FlatAlphaMatchesTheSpecsCheckedValue) {
-  // SPEC §2.3: a sphere bubble of radius 8 voxels gives alpha_flat ≈ 0.453.
+  // docs/model.md §3: a sphere bubble of radius 8 voxels gives alpha_flat ≈ 0.453.
   EXPECT_NEAR(makeSphereBubble(8.0).alpha_flat, 0.453, 0.001);
 }
 

@@ -1,4 +1,4 @@
-// Geology beyond the altitude graph (SPEC §2.4, §2.8): shape variation per
+// Geology beyond the altitude graph (docs/model.md §4, §8): shape variation per
 // seed, dipping strata, joints, a case-hardened rind, and their validation.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// File I/O: atomic replacement, PNG reading, the rock.vdb export (SPEC §2.8, §3, §6).
+// File I/O: atomic replacement, PNG reading, the rock.vdb export (docs/model.md §8, docs/formats.md).
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>

@@ -1,4 +1,4 @@
-// Libraries (SPEC §5): library files, job expansion, manifests, resume,
+// Libraries (docs/libraries.md): library files, job expansion, manifests, resume,
 // interruption, shards, failures, the index and the contact sheet.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Artists' blockouts as the initial shape (SPEC §2.8, shape: {mesh}).
+// Artists' blockouts as the initial shape (docs/model.md §8, shape: {mesh}).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Sharing presets (SPEC §5): extends, lint, preset show, override origins.
+// Sharing presets (docs/libraries.md): extends, lint, preset show, override origins.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,4 +1,4 @@
-// Preset loading and validation (SPEC §5, §6).
+// Preset loading and validation (docs/libraries.md, docs/preset-reference.md).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -301,7 +301,7 @@ TEST(Preset, ResolvedJsonReadsLikeAPreset) {
   EXPECT_EQ(presetToJson(again), j);
 }
 
-// The SPEC §6 example as an artist would write it (minus extends), with its image next to it.
+// The docs/preset-reference.md example as an artist would write it (minus extends), with its image next to it.
 TEST(Preset, ReadsTheSpecExampleWithAnImageShape) {
   test::TempDir dir;
   test::writeText(dir.path() / "shapes" / "goblin.png", "only its existence is checked here");

@@ -1,4 +1,4 @@
-// Render stage (SPEC §4): real POV-Ray renders at thumbnail size, read back
+// Render stage (docs/rendering.md): real POV-Ray renders at thumbnail size, read back
 // with OpenEXR; OpenColorIO against the sRGB formula; failure messages.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Rockfall and colluvium (SPEC §2.6, §2.7).
+// Rockfall and colluvium (docs/model.md §6, §7).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The studio's foundations (SPEC §2.4, §7): keyframes that carry bubbles and
+// The studio's foundations (docs/model.md §4, docs/studio.md): keyframes that carry bubbles and
 // response, simulation snapshots that resume exactly, keyframes replaced while
 // running, and StudioSession's edits, seeks, branches and save contract.
 #include <gtest/gtest.h>

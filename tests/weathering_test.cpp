@@ -1,4 +1,4 @@
-// The paper's results, reproduced (SPEC §2.11): cube → sphere, corner →
+// The paper's results, reproduced (docs/model.md §11): cube → sphere, corner →
 // cavern, profile follows durability, bubble shape, response curve, keyframes,
 // resolution parity.
 #include <gtest/gtest.h>
@@ -53,7 +53,7 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST(Weathering, CubeBecomesASphere) {
-  // Paper Fig. 9; SPEC §2.5's naive check: 48-voxel cube, radius-6 bubble.
+  // Paper Fig. 9; docs/model.md §5's naive check: 48-voxel cube, radius-6 bubble.
   Preset p = cubePreset(4.8, 48, 0.6);
   p.response = threshold(0.5);
   p.stop.cycles = 1000;
@@ -320,7 +320,7 @@ double resampledIoU(const VoxelRock& coarse, const VoxelRock& fine) {
 }
 
 TEST(Weathering, SamePresetAtTwoResolutionsGivesTheSameRock) {
-  // SPEC §2.9: everything in world units, one cycle = h units of time.
+  // docs/model.md §9: everything in world units, one cycle = h units of time.
   Preset p = columnPreset(48);
   p.durability.graph.points = {{0.0, 1.5}, {0.5, 0.6}, {1.0, 1.2}};
   p.bubbles[0].cavernous = 0.3;

@@ -1,4 +1,4 @@
-// rockbake's command line (SPEC §6). Exit status: 0 success, 2 bad preset or
+// rockbake's command line (docs/command-line.md). Exit status: 0 success, 2 bad preset or
 // arguments, 1 any other failure; every failure prints what to fix.
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // Atomic file replacement: readers see either the old file or the complete new
-// one, never a partial write, even if the bake dies halfway (SPEC §6).
+// one, never a partial write, even if the bake dies halfway (docs/command-line.md).
 //
 // The bytes go to a hidden temporary in the target's folder
 // (".<name>.tmp-<pid>-<n>"), are flushed and fsync'ed, then renamed over the

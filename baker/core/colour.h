@@ -1,4 +1,4 @@
-// Colour, one module for every stage (SPEC §4): preset colours are sRGB; scenes,
+// Colour, one module for every stage (docs/rendering.md): preset colours are sRGB; scenes,
 // meshes and renders work in scene-linear Rec.709. Conversions go through the
 // project's OpenColorIO config, render_templates/ocio/config.ocio (working
 // space scene-linear Rec.709, display "sRGB" with view "Standard"); the plain

@@ -1,4 +1,4 @@
-// Errors the command line turns into exit statuses (SPEC §6):
+// Errors the command line turns into exit statuses (docs/command-line.md):
 //   InputError → 2 (bad preset or arguments), anything else → 1.
 #pragma once
 

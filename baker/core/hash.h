@@ -1,5 +1,5 @@
 // Counter-based hashing: every random choice is a pure function of
-// (seed, purpose, cycle, cell), never of a thread or a call order (SPEC §2.10).
+// (seed, purpose, cycle, cell), never of a thread or a call order (docs/model.md §10).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Checks every stage applies to meshes (SPEC §3): closed and consistently
+// Checks every stage applies to meshes (docs/meshes.md): closed and consistently
 // oriented, the enclosed volume, bounds. Plain functions over core/surface_mesh.h.
 #pragma once
 

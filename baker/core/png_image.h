@@ -1,4 +1,4 @@
-// PNG images: reading for image-based initial shapes (SPEC §2.8: white is
+// PNG images: reading for image-based initial shapes (docs/model.md §8: white is
 // rock); reading and writing 8-bit RGB for previews and contact sheets.
 #pragma once
 

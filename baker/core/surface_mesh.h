@@ -1,4 +1,4 @@
-// Meshes as plain data between the inputs, mesh, export and render stages (SPEC §3).
+// Meshes as plain data between the inputs, mesh, export and render stages (docs/meshes.md).
 // World units, z up (the simulation's frame). Colours are linear RGB in [0, 1].
 #pragma once
 

@@ -1,5 +1,5 @@
 // The voxel rock: a dense grid of materials with per-voxel integrity and
-// durability (SPEC §2.1). Plain data the simulation gives to the mesh, export
+// durability (docs/model.md §1). Plain data the simulation gives to the mesh, export
 // and render stages. Materials take a byte per cell; integrity and durability
 // are kept only on each x-row's span of cells that ever held rock (RowSpans),
 // so a grid that is mostly air costs about one byte per cell plus eight per

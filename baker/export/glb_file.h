@@ -1,7 +1,7 @@
 // The export stage takes AssetMeshes (and the VoxelRock) and gives files:
 // glb_file.h, ply_file.h, obj_file.h, vdb_file.h, each written atomically.
 //
-// Binary glTF 2.0 export (SPEC §3) via tinygltf, written atomically.
+// Binary glTF 2.0 export (docs/meshes.md) via tinygltf, written atomically.
 //
 // One mesh and one node per non-empty surface (named "rock_lodN",
 // "colluvium_lodN"), triangles with POSITION, NORMAL, COLOR_0 (linear RGB

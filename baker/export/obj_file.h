@@ -1,4 +1,4 @@
-// OBJ + MTL export (SPEC §3), both written atomically.
+// OBJ + MTL export (docs/meshes.md), both written atomically.
 //
 // One object (`o`) per non-empty surface, each with its own material from the
 // .mtl (named after the surface, white diffuse so vertex colours show).

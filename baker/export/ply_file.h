@@ -1,4 +1,4 @@
-// Binary PLY export of one surface (SPEC §3), written atomically.
+// Binary PLY export of one surface (docs/meshes.md), written atomically.
 //
 //   format binary_little_endian 1.0
 //   element vertex: float x y z nx ny nz, uchar red green blue,

@@ -1,4 +1,4 @@
-// The rock as an OpenVDB file (SPEC §3 exports, §6 "bake writes" rock.vdb).
+// The rock as an OpenVDB file (docs/formats.md, rock.vdb).
 // OpenVDB headers stay in the .cpp: they are heavy to compile.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Reading artists' blockouts (SPEC §2.8): OBJ, PLY (ASCII or binary
+// Reading artists' blockouts (docs/model.md §8): OBJ, PLY (ASCII or binary
 // little-endian) and STL (ASCII or binary) into one triangle soup with shared
 // vertices. Polygons are fan-triangulated. Coordinates are the file's own.
 #pragma once

@@ -1,4 +1,4 @@
-// The inputs stage (SPEC §2.8): reads the files a preset's shape names — a
+// The inputs stage (docs/model.md §8): reads the files a preset's shape names — a
 // black-and-white PNG or a closed blockout mesh — once, checks them, and gives
 // the simulation a resolved shape value that needs no further I/O.
 #pragma once

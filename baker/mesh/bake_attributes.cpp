@@ -27,7 +27,7 @@ Rgb ramp(const std::array<Rgb, N>& stops, float t) {
 }
 
 // Palette colours are sRGB; they become scene-linear through the project's
-// OpenColorIO config (SPEC §4), the same transform the render previews invert.
+// OpenColorIO config (docs/rendering.md), the same transform the render previews invert.
 Rgb srgb(float r, float g, float b) {
   return srgbToSceneLinear({r, g, b});
 }

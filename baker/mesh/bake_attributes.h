@@ -1,11 +1,11 @@
-// Baked per-vertex attributes and palettes (SPEC §3).
+// Baked per-vertex attributes and palettes (docs/meshes.md).
 //
 // sampleAttributes reads the final grid at each vertex (before subdivision, so
 // OpenSubdiv refines the values alongside the positions):
 //   durability  D of the nearest rock voxel (0 on the colluvium surface)
 //   colluvium   rock surface: the share of colluvium among the non-rock voxels
 //               of the 3×3×3 block around the vertex, 0..1; colluvium surface: 1
-//   curvature   calibrated exposure s (SPEC §2.3) of the nearest exposed rock
+//   curvature   calibrated exposure s (docs/model.md §3) of the nearest exposed rock
 //               voxel, 0..1, ½ flat; ½ on the colluvium surface
 //   altitude    normalised, 0 at the ground, 1 at the top of grid.size
 // applyPalette turns them into linear RGB colours in [0, 1].

@@ -2,7 +2,7 @@
 // file extracts the surfaces; bake_attributes.h samples and colours them,
 // subdivide.h refines them, simplify_lods.h makes the LODs.
 //
-// Extraction (SPEC §3): the rock and the colluvium of a voxel grid as separate
+// Extraction (docs/meshes.md): the rock and the colluvium of a voxel grid as separate
 // closed, 2-manifold, outward-oriented surfaces, quad-dominant.
 //
 // Each material's occupancy becomes a narrow-band level set (zero crossing on
@@ -50,7 +50,7 @@ struct ExtractParams {
 AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
                             std::shared_ptr<const SmoothedSdf>* rock_sdf = nullptr);
 
-// The asset's pivot (SPEC §3, Megascans' convention): the centre of the solid
+// The asset's pivot (docs/meshes.md, Megascans' convention): the centre of the solid
 // voxels' (rock and colluvium) footprint, on the ground (z = 0; without ground,
 // the lowest voxel's floor). World units. Meshes, rock.vdb and the scene are
 // all written relative to it. The grid's centre when nothing is solid.

@@ -1,4 +1,4 @@
-// Checks a studio runs on a shipped mesh (SPEC §3): every LOD closed,
+// Checks a studio runs on a shipped mesh (docs/meshes.md): every LOD closed,
 // 2-manifold, outward, with no fold-overs and no zero-area triangles.
 #pragma once
 

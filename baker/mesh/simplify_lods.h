@@ -1,4 +1,4 @@
-// Levels of detail (SPEC §3): meshoptimizer edge-collapse simplification of
+// Levels of detail (docs/meshes.md): meshoptimizer edge-collapse simplification of
 // each surface, borders locked, every kept vertex keeping its attributes and
 // colour (meshoptimizer only removes vertices, so every vertex of a LOD lies on
 // the surface it was simplified from); normals recomputed. LOD0 is simplified

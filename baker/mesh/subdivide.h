@@ -1,4 +1,4 @@
-// Subdivision (SPEC §3): OpenSubdiv Far, Catmull-Clark on the quad-dominant
+// Subdivision (docs/meshes.md): OpenSubdiv Far, Catmull-Clark on the quad-dominant
 // extraction output (triangles and quads together), uniform refinement.
 // Per-vertex primvars (durability, colluvium, curvature, altitude) are refined
 // with Far::PrimvarRefiner alongside the positions, so each refined value is a

@@ -1,4 +1,4 @@
-// Surface detail (SPEC §3, `mesh.detail`): seeded roughness below the voxel
+// Surface detail (docs/meshes.md, `mesh.detail`): seeded roughness below the voxel
 // scale, displaced along the refined surface's normals before simplification.
 //
 // Each rock vertex moves by

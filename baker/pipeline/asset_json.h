@@ -1,4 +1,4 @@
-// asset.json (SPEC §4): what a studio's asset browser reads, in the spirit of a
+// asset.json (docs/rendering.md): what a studio's asset browser reads, in the spirit of a
 // Megascans payload, written beside manifest.json:
 //
 //   {"rockbake_asset": 1, "name", "tags": [..],

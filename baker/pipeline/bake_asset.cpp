@@ -155,7 +155,7 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   };
 
   // The simulation runs cycle by cycle so that its state can be checkpointed,
-  // or started from a checkpoint (SPEC §5).
+  // or started from a checkpoint (docs/libraries.md).
   std::unique_ptr<WeatheringSimulation> simulation;
   nlohmann::ordered_json cycles_before =
       nlohmann::ordered_json::array();  // a resumed bake's cycles up to its checkpoint

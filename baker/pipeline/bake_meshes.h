@@ -1,4 +1,4 @@
-// The mesh stage of the recipe (SPEC §3): final grid ─▶ surfaces ─▶ attributes
+// The mesh stage of the recipe (docs/meshes.md): final grid ─▶ surfaces ─▶ attributes
 // ─▶ subdivision ─▶ volume matched to the voxels ─▶ surface detail ─▶ palette
 // ─▶ pivot ─▶ LOD0 (simplified to mesh.max_error) ─▶ files in the asset folder,
 // as the preset's `export:` list asks, every mesh file holding LOD0:

@@ -1,4 +1,4 @@
-// Checkpoints (SPEC §5): the whole simulation state at one time, in one file
+// Checkpoints (docs/libraries.md): the whole simulation state at one time, in one file
 // (`bake --checkpoint-every T` writes OUT/<name>/checkpoints/<time>.rbk), and
 // what `rockbake resume` continues from (pipeline/resume_plan.h).
 //

@@ -1,5 +1,5 @@
 // BakeLibrary: every job of a library (or of one shard of it) as a TBB
-// pipeline, one asset folder per job, then the index (SPEC §5).
+// pipeline, one asset folder per job, then the index (docs/libraries.md).
 //
 //   jobs ─▶ [serial: next job] ─▶ [parallel: load preset, resume check, bakeAsset]
 //        ─▶ [serial: record, progress] ─▶ index.json + contact_sheet.png

@@ -1,4 +1,4 @@
-// A library's index.json and contact_sheet.png (SPEC §5), built from the asset
+// A library's index.json and contact_sheet.png (docs/libraries.md), built from the asset
 // folders on disk, so that shards baked on several machines into one OUT (or
 // copied together) give the same index as one machine baking everything.
 //

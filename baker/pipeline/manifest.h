@@ -1,4 +1,4 @@
-// manifest.json: the last file a bake writes in its asset folder (SPEC §1, §5).
+// manifest.json: the last file a bake writes in its asset folder (docs/formats.md, docs/libraries.md).
 // Its presence says the folder is complete; it records what went in, what
 // came out and how long it took:
 //

@@ -1,4 +1,4 @@
-// `rockbake resume CHECKPOINT --set ...` (SPEC §5): the preset a resumed bake
+// `rockbake resume CHECKPOINT --set ...` (docs/libraries.md): the preset a resumed bake
 // runs, from a checkpoint read by pipeline/checkpoint.h.
 #pragma once
 

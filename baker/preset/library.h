@@ -1,4 +1,4 @@
-// Library files (SPEC §5): presets × seeds × wedges, expanded into an ordered
+// Library files (docs/libraries.md): presets × seeds × wedges, expanded into an ordered
 // list of bake jobs, and split into shards.
 //
 // A library file is a YAML list of entries:

@@ -270,7 +270,7 @@ ResponseParams readResponse(const Field& r) {
   return response;
 }
 
-// shape.variation (SPEC §2.8).
+// shape.variation (docs/model.md §8).
 ShapeVariation readVariation(const Field& f) {
   f.expectMap();
   ShapeVariation v;
@@ -281,7 +281,7 @@ ShapeVariation readVariation(const Field& f) {
   return v;
 }
 
-// durability.strata, joints and rind (SPEC §2.4).
+// durability.strata, joints and rind (docs/model.md §4).
 StrataParams readStrata(const Field& f) {
   f.expectMap();
   StrataParams s;

@@ -1,4 +1,4 @@
-// Reading presets: YAML → validated Preset (SPEC §5, §6).
+// Reading presets: YAML → validated Preset (docs/libraries.md, docs/preset-reference.md).
 //
 // `extends: base.yaml` (relative to the file that says it) merges a base
 // preset under this one: maps are deep-merged with this file's keys winning,

@@ -1,5 +1,5 @@
 // The validated preset: plain data, the contract every later stage reads.
-// SPEC §6. Lengths are world units, altitudes are normalised to [0, 1] from the
+// docs/preset-reference.md. Lengths are world units, altitudes are normalised to [0, 1] from the
 // ground (z = 0) to the top of grid.size, angles are degrees.
 #pragma once
 
@@ -24,7 +24,7 @@ struct GridParams {
   bool ground = true;         // false: free-floating rock, rockfall off
 };
 
-// ---- initial shape (SPEC §2.8) ----
+// ---- initial shape (docs/model.md §8) ----
 struct BoxShape {
   Vec3d size;
 };
@@ -74,7 +74,7 @@ struct ShapeParams {
   std::optional<ShapeVariation> variation;  // none: the shape exactly
 };
 
-// ---- durability graph (SPEC §2.4) ----
+// ---- durability graph (docs/model.md §4) ----
 struct NoiseParams {
   double amplitude = 0.0;  // durability units, >= 0
   double period = 1.0;     // world units, > 0
@@ -86,7 +86,7 @@ struct DurabilityGraph {
   // One entry per segment (points.size() - 1 entries) or empty for none.
   std::vector<std::optional<NoiseParams>> noise;
 };
-// Geology beyond the paper's altitude graph (SPEC §2.4). Planes strike
+// Geology beyond the paper's altitude graph (docs/model.md §4). Planes strike
 // `strike` degrees clockwise from +y (seen from above) and dip `dip` degrees
 // (0..90) towards the strike's right.
 struct StrataParams {
@@ -109,7 +109,7 @@ struct RindParams {
 };
 
 
-// ---- bubbles (SPEC §2.3) ----
+// ---- bubbles (docs/model.md §3) ----
 struct BubbleSpec {
   enum class Kind { Sphere, Ellipsoid, Box, Collection };
   Kind kind = Kind::Sphere;
@@ -130,7 +130,7 @@ struct BubbleBand {
   double cavernous = 0.0;   // k_c >= 0
 };
 
-// ---- decimation response f (SPEC §2.5) ----
+// ---- decimation response f (docs/model.md §5) ----
 struct ResponseParams {
   enum class Kind { Power, Threshold, Curve };
   Kind kind = Kind::Power;
@@ -138,8 +138,8 @@ struct ResponseParams {
   std::vector<std::array<double, 2>> curve;  // Curve: x strictly increasing from 0 to 1
 };
 
-// ---- keyframes (SPEC §2.4) ----
-// An edit during the simulation (SPEC §2.4, §7): from time `at` on, each part
+// ---- keyframes (docs/model.md §4) ----
+// An edit during the simulation (docs/model.md §4, docs/studio.md): from time `at` on, each part
 // it carries replaces the one in effect. At least one part is set.
 struct DurabilityKeyframe {
   double at = 0.0;                                 // simulation time (world units of time), >= 0
@@ -156,7 +156,7 @@ struct DurabilityParams {
   std::optional<RindParams> rind;
 };
 
-// ---- rockfall and colluvium (SPEC §2.6, §2.7) ----
+// ---- rockfall and colluvium (docs/model.md §6, §7) ----
 enum class RockfallMode { Drop, Crumble, Off };
 struct RockfallParams {
   RockfallMode mode = RockfallMode::Drop;
@@ -167,7 +167,7 @@ struct ColluviumParams {
   double removal = 0.0;       // fraction of exposed colluvium carried away per cycle, 0..1
 };
 
-// ---- how long to weather (SPEC §2.9) ----
+// ---- how long to weather (docs/model.md §9) ----
 struct StopParams {
   std::optional<double> time;                  // world units of time; cycles = ceil(time / h)
   std::optional<int> cycles;                   // exactly one of time / cycles is set
@@ -211,7 +211,7 @@ struct RenderParams {
   int turntable_frames = 0;  // 0: no turntable
 };
 
-// What the simulation reads (SPEC §2): everything that decides the voxels.
+// What the simulation reads (docs/model.md): everything that decides the voxels.
 struct SimParams {
   std::uint64_t seed = 0;  // every random choice derives from (seed, purpose, ...)
   GridParams grid;

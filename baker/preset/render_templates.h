@@ -1,4 +1,4 @@
-// Render templates are chosen by name, never by path (SPEC §6): a preset's
+// Render templates are chosen by name, never by path (docs/preset-reference.md): a preset's
 // `render.template` and `rockbake render --template` name a NAME.pov in the
 // templates folder. That folder is the source tree's render_templates/, or
 // the folder the environment variable ROCKBAKE_RENDER_TEMPLATES names (a

@@ -1,4 +1,4 @@
-// Typed, located reads of YAML for the preset and library readers (SPEC §5).
+// Typed, located reads of YAML for the preset and library readers (docs/libraries.md).
 //
 // A Field is a YAML node with its key path ("bubbles.0.bubble.sphere.radius")
 // and the file and position it came from, so every problem it reports says

@@ -1,4 +1,4 @@
-// A library's contact sheet (SPEC §5): one thumbnail per asset with its name
+// A library's contact sheet (docs/libraries.md): one thumbnail per asset with its name
 // printed under it, as an 8-bit sRGB PNG.
 //
 // Layout, all in pixels: tiles of kThumbWidth × kThumbHeight with a

@@ -1,4 +1,4 @@
-// EXR headers that say where a render came from (SPEC §4), and the turntable
+// EXR headers that say where a render came from (docs/rendering.md), and the turntable
 // contact sheet. Pixels stay half-float RGB(A).
 #pragma once
 

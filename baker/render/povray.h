@@ -1,4 +1,4 @@
-// Running POV-Ray as a subprocess (SPEC §4): explicit arguments, the asset
+// Running POV-Ray as a subprocess (docs/rendering.md): explicit arguments, the asset
 // folder as working directory, a timeout, its messages captured.
 #pragma once
 

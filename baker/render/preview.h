@@ -1,4 +1,4 @@
-// Previews of renders (SPEC §4): an EXR (scene-linear) through the project's
+// Previews of renders (docs/rendering.md): an EXR (scene-linear) through the project's
 // OpenColorIO display/view transform (core/colour.h) to an 8-bit sRGB PNG.
 #pragma once
 

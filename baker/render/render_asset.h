@@ -1,5 +1,5 @@
 // The render stage takes AssetMeshes and RenderParams and gives renders
-// (SPEC §4): scene → POV-Ray → EXR with metadata → OCIO PNG
+// (docs/rendering.md): scene → POV-Ray → EXR with metadata → OCIO PNG
 // preview; optionally a turntable and its contact sheet.
 #pragma once
 

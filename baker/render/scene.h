@@ -1,4 +1,4 @@
-// POV-Ray scenes for a baked asset (SPEC §4): the mesh2 include and a filled
+// POV-Ray scenes for a baked asset (docs/rendering.md): the mesh2 include and a filled
 // template.
 //
 // Frames. The baker's world is right-handed, z up (SurfaceMesh). POV-Ray is

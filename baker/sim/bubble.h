@@ -1,4 +1,4 @@
-// Bubbles: the neighbourhoods whose air fraction estimates curvature (SPEC §2.3).
+// Bubbles: the neighbourhoods whose air fraction estimates curvature (docs/model.md §3).
 //
 // A Bubble is a finite, symmetric set of integer voxel offsets that contains 0,
 // stored both as a list and as x-intervals ("rows") for fast counting.
@@ -36,7 +36,7 @@ Bubble makeBubbleFromOffsets(std::vector<Bubble::Offset> offsets);  // must be s
 // α on a flat face whose outward normal is `axis` (0..5 = +x, -x, +y, -y, +z, -z).
 double flatFaceAlpha(const Bubble& bubble, int axis);
 
-// s from α (SPEC §2.3): ½ on a flat face, towards 1 when convex, towards 0 when concave.
+// s from α (docs/model.md §3): ½ on a flat face, towards 1 when convex, towards 0 when concave.
 inline double calibratedExposure(double alpha, double alpha_flat) {
   if (alpha <= alpha_flat) return 0.5 * alpha / alpha_flat;
   return 0.5 + 0.5 * (alpha - alpha_flat) / (1.0 - alpha_flat);

@@ -1,4 +1,4 @@
-// Colluvium (SPEC §2.7): weathered rock piles up at the foot of the rock.
+// Colluvium (docs/model.md §7): weathered rock piles up at the foot of the rock.
 //
 // Each decimated rock voxel adds `yield` units to its (x, y) column's
 // accumulator (fixed point, so sums are exact); every whole unit becomes a

@@ -1,7 +1,7 @@
-// Exact bubble counts α and calibrated exposure s (SPEC §2.3).
+// Exact bubble counts α and calibrated exposure s (docs/model.md §3).
 //
 // AirField keeps one bit per cell (1 = air) in rows along x, with an apron of
-// cells around the grid whose bits follow SPEC §2.3: air beyond the sides and
+// cells around the grid whose bits follow docs/model.md §3: air beyond the sides and
 // the top, solid below the ground (air when grid.ground is false). Colluvium
 // counts as solid. Counting a bubble is then one masked popcount per bubble
 // row instead of one lookup per offset: O(R²) per voxel, not O(R³), and it

@@ -1,4 +1,4 @@
-// The durability field (SPEC §2.4): the graph over altitude with seeded
+// The durability field (docs/model.md §4): the graph over altitude with seeded
 // improved Perlin noise per segment, read along tilted and folded beds
 // (strata), weakened along joints and hardened in a rind.
 #pragma once

@@ -1,4 +1,4 @@
-// The grid a preset simulates on (SPEC §2.1, §2.9): voxel size h from
+// The grid a preset simulates on (docs/model.md §1, §9): voxel size h from
 // grid.resolution, an air margin as wide as the largest bubble reaches, and
 // what the simulation needs in memory for it.
 #pragma once

@@ -1,4 +1,4 @@
-// Voxelizing a closed blockout (SPEC §2.8, `shape: {mesh}`) with OpenVDB's
+// Voxelizing a closed blockout (docs/model.md §8, `shape: {mesh}`) with OpenVDB's
 // meshToLevelSet: a voxel is rock when its centre is inside the mesh.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The decimation response f (SPEC §2.5, paper Fig. 13): maps exposure in
+// The decimation response f (docs/model.md §5, paper Fig. 13): maps exposure in
 // [0, 1] to a weathering factor in [0, 1].
 #pragma once
 

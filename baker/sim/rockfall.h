@@ -1,4 +1,4 @@
-// Rockfall (SPEC §2.6, after Ito et al. without slippage): solid material
+// Rockfall (docs/model.md §6, after Ito et al. without slippage): solid material
 // (rock ∪ colluvium) that is not 6-connected to the ground falls straight
 // down, rigidly, whole voxels at a time, until one more step would overlap
 // solid or the ground; repeated until nothing floats.

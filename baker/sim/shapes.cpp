@@ -100,7 +100,7 @@ TriangleMesh placeMesh(TriangleMesh mesh, const Vec3d& center) {
   return mesh;
 }
 
-// SPEC §2.8 variation: the boundary moved along its normal by seeded noise, up
+// docs/model.md §8 variation: the boundary moved along its normal by seeded noise, up
 // to `amplitude` out (noise > 0) or in: rock where the signed distance to the
 // shape is below the displacement.
 void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const ShapeVariation& v, std::uint64_t seed) {

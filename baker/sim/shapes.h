@@ -1,4 +1,4 @@
-// The initial rock (SPEC §2.8): a resolved shape (inputs/resolve_shape.h)
+// The initial rock (docs/model.md §8): a resolved shape (inputs/resolve_shape.h)
 // voxelized into the grid of computeGridLayout(params), integrity 1,
 // durability from the graph.
 #pragma once

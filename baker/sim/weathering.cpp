@@ -63,7 +63,7 @@ BubbleGraph bindBubbleGraph(const std::vector<BubbleBand>& bubbles, const GridLa
   return graph;
 }
 
-// SPEC §2.2: rock with at least one face neighbour of air.
+// docs/model.md §2: rock with at least one face neighbour of air.
 bool isExposed(const VoxelRock& rock, const AirField& field, int x, int y, int z) {
   if (rock.material[rock.layout.index(x, y, z)] != Material::Rock) return false;
   return field.isAir(x - 1, y, z) || field.isAir(x + 1, y, z) || field.isAir(x, y - 1, z) || field.isAir(x, y + 1, z) ||
@@ -187,7 +187,7 @@ struct WeatheringSimulation::State {
     if (preset.colluvium.removal > 0.0) colluvium.emplace(rock.layout, ColluviumCell{&rock});
   }
 
-  // Rockfall and colluvium need the ground to fall and pile onto (SPEC §2.1).
+  // Rockfall and colluvium need the ground to fall and pile onto (docs/model.md §1).
   bool rockfallOn() const { return rock.layout.ground && preset.rockfall.mode != RockfallMode::Off; }
   // Colluvium comes from decimated rock (yield) and from crumbled rockfall.
   bool colluviumOn() const {
@@ -203,7 +203,7 @@ struct WeatheringSimulation::State {
     graph = bindBubbleGraph(bubbles, rock.layout, field, estimators);
   }
 
-  // Directability (SPEC §2.4): every keyframe whose time has come by
+  // Directability (docs/model.md §4): every keyframe whose time has come by
   // `time` replaces the durability graph for all rock still standing
   // (integrities are kept), and the bubble graph and response it carries.
   // `durability` false when resuming: the durability is already in the rock.
@@ -398,7 +398,7 @@ CycleStats WeatheringSimulation::step() {
   std::vector<Cell> changed = decimated;
   std::vector<Cell> vacated = decimated;
 
-  // Colluvium (SPEC §2.7): deposit, settle, carry some away, settle again.
+  // Colluvium (docs/model.md §7): deposit, settle, carry some away, settle again.
   std::vector<Cell> unstable;
   phase_start = Clock::now();
   if (st.colluviumOn()) {
@@ -421,7 +421,7 @@ CycleStats WeatheringSimulation::step() {
     st.colluvium_model.settle(rock, unstable, changed, vacated);
   }
 
-  // Rockfall (SPEC §2.6): until nothing floats. Crumbled rock settles as
+  // Rockfall (docs/model.md §6): until nothing floats. Crumbled rock settles as
   // colluvium, which can uncover more to fall.
   stats.colluvium_seconds = secondsSince(phase_start);
   phase_start = Clock::now();

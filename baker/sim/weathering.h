@@ -1,7 +1,7 @@
 // The simulation stage: takes the initial rock and SimParams, gives the
 // weathered rock and per-cycle statistics; no I/O.
 //
-// The weathering cycles (SPEC §2.5–2.9): each cycle estimates the exposure
+// The weathering cycles (docs/model.md §5–2.9): each cycle estimates the exposure
 // of every exposed rock voxel from the state at the cycle's start, lowers its
 // integrity by w / D, and decimates all voxels whose integrity reached 0
 // together; then colluvium is deposited, settled and carried away, and
@@ -89,7 +89,7 @@ class WeatheringSimulation {
   // The parameters in effect now: the bubble graph and response of the
   // latest keyframe reached (for attributes computed from the current state).
   SimParams activeParams() const;
-  // Replaces the keyframes (directability while running, SPEC §7). Keyframes
+  // Replaces the keyframes (directability while running, docs/studio.md). Keyframes
   // the simulation has already reached must stay as they are, at the same
   // index: throws std::invalid_argument otherwise.
   void setKeyframes(std::vector<DurabilityKeyframe> keyframes);

@@ -1,4 +1,4 @@
-// `rockbake studio` (SPEC §7): a local HTTP server (cpp-httplib) around a
+// `rockbake studio` (docs/studio.md): a local HTTP server (cpp-httplib) around a
 // StudioSession, serving the page in studio/ and the JSON API of
 // docs/studio.md. One thread runs cycles while the page says play; requests
 // take the same lock, so each sees the simulation between two cycles.
