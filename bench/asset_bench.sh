@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Asset budgets (issue 12), against a baseline build in the same run:
+# Asset budgets, against a baseline build in the same run:
 #   bench/asset_bench.sh BASELINE_ROOT [OUT]
 # BASELINE_ROOT holds the baseline's build/baker/rockbake and its presets/.
 # Prints the goblin bake's wall time and folder size for both builds, LOD0's

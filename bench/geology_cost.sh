@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What the geology (issue 11: shape variation, strata, joints, rind) costs a
+# What the geology (shape variation, strata, joints, rind) costs a
 # bake, against a baseline build in the same run:
 #   bench/geology_cost.sh BASELINE_ROCKBAKE [OUT]
 # For every shipped preset at its own resolution, `--no-mesh`, 2 threads:

@@ -6,7 +6,7 @@
 # Usage: bench/hero_bake.sh BASELINE_ROCKBAKE [RESOLUTION=384] [OUT=/tmp/hero-bake] [SCALING_RESOLUTION]
 #   BASELINE_ROCKBAKE   the rockbake executable to compare against
 #   SCALING_RESOLUTION  resolution of the thread-scaling runs (default RESOLUTION)
-# The rock is goblin as issue 14 set its targets: without the geology it has
+# The rock is goblin as its targets were set: without the geology it has
 # since gained (`--set shape.variation=null --set durability.joints=null`).
 # BASELINE_PRESET (environment) is the goblin preset the baseline reads, for a
 # baseline that predates those keys (default presets/goblin.yaml).
@@ -67,7 +67,7 @@ fi
 if cmp -s "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb"; then
   echo "rock.vdb: byte-identical to the baseline's"
 elif build/bench/rockbake_vdb_same "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb" > /dev/null; then
-  # The asset's frame (pivot) and metadata changed with issue 12; the grids did not.
+  # The asset's frame (pivot) and metadata changed after the baseline; the grids did not.
   echo "rock.vdb: the same grids as the baseline's (transform and metadata differ)"
 else
   echo "rock.vdb: DIFFERS from the baseline's"

@@ -1,4 +1,4 @@
-// How far LOD0 lies from the surface it was simplified from (issue 12):
+// How far LOD0 lies from the surface it was simplified from:
 // rock.vdb's rock_sdf sampled (trilinear) at rock.ply's vertices, in voxels.
 // Bake with `--set mesh.detail=null` so the field and the surface agree.
 //   lod0_error ASSET_DIR  → "vertices N mean M p99 P max X (voxels)"

@@ -1,4 +1,4 @@
-// The mesh stage on a weathered 128³ asset (issue 4; figures in bench/README.md).
+// The mesh stage on a weathered 128³ asset (figures in bench/README.md).
 //
 //   BM_MeshExtract:    level sets, smoothing and polygonisation of rock and colluvium
 //   BM_MeshAttributes: exposure field and per-vertex sampling (level 0)

@@ -1,4 +1,4 @@
-// How different two seeds of each catalogue preset are (issue 11): the
+// How different two seeds of each catalogue preset are: the
 // intersection over union of their weathered rocks at resolution 48, with
 // each preset's geology and with it removed (the altitude graph alone), in one
 // run of one build.

@@ -1,5 +1,5 @@
 # Every third-party library, found the way Debian 12 packages them.
-# See docs/dependencies.md for the quirks this file works around.
+# The quirks each find works around are noted beside it.
 find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
 find_package(TBB REQUIRED)

@@ -4,7 +4,7 @@
 // .mtl (named after the surface, white diffuse so vertex colours show).
 // Vertices as `v x y z r g b` (colours: the linear colours encoded to sRGB,
 // as OBJ viewers display them), normals as `vn`, faces `f a//a b//b c//c`.
-// World units, z up.
+// World units, y up as DCCs read OBJ: world (x, y, z) is written (x, z, -y).
 #pragma once
 
 #include <filesystem>

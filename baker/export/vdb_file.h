@@ -8,7 +8,7 @@
 
 namespace rockbake {
 
-struct SmoothedSdf;  // io/openvdb_support.h
+struct SmoothedSdf;  // core/openvdb_support.h
 
 // Writes, atomically, one .vdb holding
 //   BoolGrid  "rock"        active, true on Material::Rock voxels

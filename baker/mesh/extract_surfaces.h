@@ -29,7 +29,7 @@
 
 namespace rockbake {
 
-struct SmoothedSdf;  // io/openvdb_support.h
+struct SmoothedSdf;  // core/openvdb_support.h
 
 struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)

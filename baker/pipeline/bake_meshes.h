@@ -20,7 +20,7 @@
 
 namespace rockbake {
 
-struct SmoothedSdf;  // io/openvdb_support.h
+struct SmoothedSdf;  // core/openvdb_support.h
 
 struct MeshStageResult {
   AssetMeshes meshes;                           // LOD0: attributed, coloured, about the pivot

@@ -1,4 +1,4 @@
-// Signed distance to the boundary of a set of cells (docs/model.md §4 rind, §2.8
+// Signed distance to the boundary of a set of cells (docs/model.md §4 rind, §8
 // variation), world units, negative inside.
 #pragma once
 

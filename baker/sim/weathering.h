@@ -1,7 +1,7 @@
 // The simulation stage: takes the initial rock and SimParams, gives the
 // weathered rock and per-cycle statistics; no I/O.
 //
-// The weathering cycles (docs/model.md §5–2.9): each cycle estimates the exposure
+// The weathering cycles (docs/model.md §5–§9): each cycle estimates the exposure
 // of every exposed rock voxel from the state at the cycle's start, lowers its
 // integrity by w / D, and decimates all voxels whose integrity reached 0
 // together; then colluvium is deposited, settled and carried away, and

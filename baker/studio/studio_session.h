@@ -1,4 +1,4 @@
-// The studio's model (docs/studio.md, docs/studio.md): one preset simulated at a
+// The studio's model (docs/studio.md): one preset simulated at a
 // preview resolution, cycle by cycle, with edits that become keyframes, a
 // timeline of in-memory checkpoints, save, and the state the page shows. No
 // HTTP here (studio_server.h serves it); not thread-safe: the server calls

@@ -1,4 +1,4 @@
-// rock.vdb's rock_sdf after the mesh stage (issue 4): the smoothed field the
+// rock.vdb's rock_sdf after the mesh stage (docs/meshes.md): the smoothed field the
 // rock surface was extracted from, not the raw occupancy.
 #include <gtest/gtest.h>
 #include <openvdb/io/File.h>

@@ -1,4 +1,4 @@
-// Meshes (docs/meshes.md, issue 4): extraction, subdivision, attributes and palettes,
+// Meshes (docs/meshes.md): extraction, subdivision, attributes and palettes,
 // PLY/OBJ/GLB exports read back, LODs.
 #include <gtest/gtest.h>
 

@@ -192,7 +192,7 @@ TEST(AssetLod0, WithinItsErrorBoundFarSmallerClosedAndOutward) {
   double mean = 0;
   for (double v : phi) mean += v / double(phi.size());
   EXPECT_LT(mean, 0.5 * p.mesh.max_error) << "voxels";
-  // Every vertex, on voxel-thin parts and by the ground cap's rim too (issue 12).
+  // Every vertex, on voxel-thin parts and by the ground cap's rim too.
   EXPECT_LT(phi.back(), p.mesh.max_error) << "voxels, max";
 
   // Far smaller than the refined surface, and a clean closed surface.
@@ -250,7 +250,7 @@ TEST(AssetLods, TriangleCountsGiveThoseCountsWithoutFoldOvers) {
 
 // Detail displacement, and projection onto a field creased at voxel-thin
 // parts, leave the refined surface unfolded, so LOD0 and the chain have
-// neither fold-overs nor zero-area triangles (issue 12). Not asserted for a
+// neither fold-overs nor zero-area triangles (docs/meshes.md). Not asserted for a
 // piece of a single voxel: half a voxel across, LOD0's error bound can still
 // leave it a folded sliver.
 TEST(AssetLods, DetailLeavesNoFoldOvers) {
