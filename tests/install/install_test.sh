@@ -3,7 +3,7 @@
 # installed into a scratch prefix with `cmake --install`, the prefix is moved to
 # another folder, and the moved rockbake
 #   - has the layout the README's "Installing" gives, and nothing of node_modules
-#     but the three.js files the page serves;
+#     but the three.js files the page serves, each named in THIRD_PARTY_NOTICES;
 #   - holds neither the source nor the build folder's path (strings);
 #   - bakes and renders a small preset (a real POV-Ray render) and renders it again
 #     with another template, from a folder that is not the prefix;
@@ -57,6 +57,11 @@ unexpected=$(grep -v -E '^\./three/(build|examples/jsm)/[^ ]+\.js$' <<<"$vendore
 [ -z "$unexpected" ] || fail_check "node_modules holds more than three.js modules: $unexpected"
 [ "$(wc -l <<<"$vendored")" -le 8 ] || fail_check "node_modules holds $(wc -l <<<"$vendored") files, not the few the page imports"
 pass "the layout: bin/, share/rockbake/{render_templates,studio,slurm}, share/doc/rockbake; node_modules: $(echo $vendored)"
+# Every file served from another project is named in the notices that ship with it.
+while read -r f; do
+  awk -v path="share/rockbake/studio/node_modules/${f#./}" '$1 == path { found = 1 } END { exit !found }' \
+    "$prefix/share/doc/rockbake/THIRD_PARTY_NOTICES" || fail_check "THIRD_PARTY_NOTICES does not name the served file node_modules/${f#./}"
+done <<<"$vendored"
 
 # ---------------------------------------------------------------- no paths of the build machine
 strings -a "$rockbake" >"$work/strings.txt"
