@@ -14,9 +14,19 @@ find_package(PNG REQUIRED)
 find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 find_package(Freetype REQUIRED)
 
-# OpenVDB's module lives outside CMake's default search path on Debian, and
+# OpenVDB's find module lives outside CMake's default search path on Debian, in the
+# architecture's library folder (lib/x86_64-linux-gnu, lib/aarch64-linux-gnu, …), and
 # needs Boost iostreams present to configure.
-list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+find_path(OPENVDB_FIND_MODULE_DIR FindOpenVDB.cmake
+  PATHS ${CMAKE_PREFIX_PATH} ${CMAKE_SYSTEM_PREFIX_PATH}
+  PATH_SUFFIXES lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB lib64/cmake/OpenVDB lib/cmake/OpenVDB
+  NO_DEFAULT_PATH)
+if(NOT OPENVDB_FIND_MODULE_DIR)
+  message(FATAL_ERROR "OpenVDB's FindOpenVDB.cmake was not found under lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB "
+                      "of ${CMAKE_SYSTEM_PREFIX_PATH}: install libopenvdb-dev (scripts/setup.sh), or pass "
+                      "-DOPENVDB_FIND_MODULE_DIR=<the folder that holds it>")
+endif()
+list(APPEND CMAKE_MODULE_PATH ${OPENVDB_FIND_MODULE_DIR})
 find_package(OpenVDB REQUIRED)
 
 # OpenSubdiv: its CMake package names static libraries Debian does not ship,

@@ -11,6 +11,8 @@ packages=(
   libtinygltf-dev libmeshoptimizer-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
+  # The .deb (cpack -G DEB): dpkg-shlibdeps (dpkg-dev) finds its dependencies, and needs `file`.
+  dpkg-dev file
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
   # ASan/UBSan runtimes; llvm-14 brings llvm-symbolizer for readable reports.
   clang-14 libclang-rt-14-dev llvm-14

@@ -23,6 +23,7 @@
 
 #include "cli/library_progress.h"
 #include "core/abnormal_exit.h"
+#include "core/data_dir.h"
 #include "core/error.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
@@ -444,7 +445,7 @@ int main(int argc, char** argv) {
     if (*studio_cmd) {
       studio.preset = studio_preset;
       studio.out_dir = studio_out;
-      studio.web_root = ROCKBAKE_STUDIO_DIR;
+      studio.web_root = rockbake::requireDataPath("studio");
       return rockbake::runStudio(studio);
     }
   } catch (const rockbake::InputError& e) {

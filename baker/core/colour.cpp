@@ -9,9 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
-#define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
-#endif
+#include "core/data_dir.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -55,7 +53,7 @@ std::array<float, 3> apply(const OCIO::ConstCPUProcessorRcPtr& p, const std::arr
 }  // namespace
 
 std::filesystem::path defaultOcioConfig() {
-  return std::filesystem::path(ROCKBAKE_RENDER_TEMPLATES_DIR) / "ocio" / "config.ocio";
+  return requireDataPath("render_templates/ocio/config.ocio");
 }
 
 std::array<float, 3> srgbToSceneLinear(const std::array<float, 3>& srgb, const std::filesystem::path& cfg) {

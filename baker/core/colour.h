@@ -11,7 +11,8 @@
 
 namespace rockbake {
 
-// <render_templates>/ocio/config.ocio of the source tree (set at build time).
+// render_templates/ocio/config.ocio in rockbake's data folder (core/data_dir.h); throws
+// std::runtime_error, saying where it looked, when the data folder lacks it.
 std::filesystem::path defaultOcioConfig();
 
 // An sRGB-encoded colour (a preset's palette entry, 0..1) to the scene-linear

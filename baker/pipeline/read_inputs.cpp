@@ -13,6 +13,17 @@
 
 namespace rockbake {
 
+void checkGridCellCount(const Preset& preset) {
+  const GridLayout layout = computeGridLayout(preset);
+  if (layout.cellCount() <= kMaxSimulationCells) return;
+  throw InputError(
+      preset.locate("grid.resolution"), "grid.resolution",
+      fmt::format("a {}×{}×{} grid (its air margin included) is {} cells; the simulation numbers at "
+                  "most {} (2^32 - 1)",
+                  layout.nx, layout.ny, layout.nz, layout.cellCount(), kMaxSimulationCells),
+      fmt::format("lower grid.resolution (or --resolution) to {} or less", largestResolutionWithinCellLimit(preset)));
+}
+
 void checkGridFitsInMemory(const Preset& preset) {
   const GridLayout layout = computeGridLayout(preset);
   const std::uint64_t needed = estimateSimulationBytes(preset);
@@ -34,6 +45,7 @@ std::string outOfMemoryMessage(const Preset& preset) {
 }
 
 ResolvedShape readInputs(const Preset& preset) {
+  checkGridCellCount(preset);
   checkGridFitsInMemory(preset);
   return resolveShape(preset);
 }

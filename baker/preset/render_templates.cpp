@@ -3,19 +3,16 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "preset/yaml_text.h"
+#include "core/data_dir.h"
 #include "core/did_you_mean.h"
-
-#ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
-#define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
-#endif
+#include "preset/yaml_text.h"
 
 namespace rockbake {
 
 std::filesystem::path renderTemplatesDir() {
   const char* configured = std::getenv("ROCKBAKE_RENDER_TEMPLATES");
-  return configured && *configured ? std::filesystem::path(configured)
-                                   : std::filesystem::path(ROCKBAKE_RENDER_TEMPLATES_DIR);
+  if (configured && *configured) return configured;
+  return requireDataPath("render_templates");
 }
 
 std::vector<std::string> renderTemplateNames(const std::filesystem::path& dir) {
@@ -30,8 +27,11 @@ std::vector<std::string> renderTemplateNames(const std::filesystem::path& dir) {
 
 std::optional<std::string> renderTemplateProblem(const std::string& name, const std::filesystem::path& dir) {
   const std::vector<std::string> names = renderTemplateNames(dir);
-  const std::string available =
-      names.empty() ? "the folder " + dir.string() + " has none" : "available: " + joinNames(names);
+  std::error_code ec;
+  const std::string available = !names.empty() ? "available: " + joinNames(names)
+                                : std::filesystem::is_directory(dir, ec)
+                                    ? "the folder " + dir.string() + " has none"
+                                    : "the folder " + dir.string() + " does not exist";
   // Only a plain name can be looked up: nothing that climbs out of the folder or leaves it.
   if (!isAssetName(name)) return "'" + name + "' is not a template name; " + available;
   if (std::find(names.begin(), names.end(), name) != names.end()) return std::nullopt;

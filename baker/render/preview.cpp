@@ -11,10 +11,6 @@
 #include "core/png_image.h"
 #include "preset/render_templates.h"
 
-#ifndef ROCKBAKE_RENDER_TEMPLATES_DIR
-#define ROCKBAKE_RENDER_TEMPLATES_DIR "render_templates"
-#endif
-
 namespace rockbake {
 
 std::filesystem::path defaultRenderTemplatesDir() {

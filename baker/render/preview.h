@@ -8,7 +8,7 @@
 
 namespace rockbake {
 
-// The source tree's render_templates/ (set at build time).
+// The render templates folder: renderTemplatesDir() (preset/render_templates.h).
 std::filesystem::path defaultRenderTemplatesDir();
 
 // Reads an EXR (scene-linear), applies the display/view transform and writes an

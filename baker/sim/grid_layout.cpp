@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace rockbake {
 
@@ -29,6 +31,30 @@ GridLayout computeGridLayout(const SimParams& preset) {
   g.domain_height = size[2];
   g.ground = preset.grid.ground;
   return g;
+}
+
+void requireSimulationCells(const GridLayout& layout) {
+  if (layout.cellCount() > kMaxSimulationCells)
+    throw std::invalid_argument("a " + std::to_string(layout.nx) + "×" + std::to_string(layout.ny) + "×" +
+                                std::to_string(layout.nz) + " grid has more cells than the simulation numbers (" +
+                                std::to_string(kMaxSimulationCells) + ")");
+}
+
+int largestResolutionWithinCellLimit(const SimParams& params) {
+  SimParams trial = params;
+  const auto fits = [&](int resolution) {
+    trial.grid.resolution = resolution;
+    return computeGridLayout(trial).cellCount() <= kMaxSimulationCells;
+  };
+  // Cells grow with the resolution (the margin, in voxels, too): bisect for the last that fits.
+  int lo = GridParams::kMinResolution, hi = params.grid.resolution;
+  if (fits(hi)) return hi;
+  if (!fits(lo)) return lo;
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 std::uint64_t estimateSimulationBytes(const GridLayout& layout) {

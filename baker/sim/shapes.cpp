@@ -129,6 +129,7 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
   VoxelRock rock;
   rock.layout = computeGridLayout(preset);
   const GridLayout& g = rock.layout;
+  requireSimulationCells(g);
   const Vec3d& domain = preset.grid.size;
   const Vec3d center = shape.params.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
   rock.material.assign(g.cellCount(), Material::Air);

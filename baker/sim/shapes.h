@@ -12,7 +12,8 @@ namespace rockbake {
 // A voxel is rock when its centre lies inside the shape. Rock is kept inside
 // the domain (grid.size); a shape reaching past it is clipped there (with a
 // warning). The rock may be empty when the shape covers no voxel centre: the
-// caller decides whether that is an error.
+// caller decides whether that is an error. Throws std::invalid_argument, before
+// allocating, for a grid over kMaxSimulationCells (sim/grid_layout.h).
 VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& params);
 
 // How far (world units) from the shape's boundary shape.variation reads its

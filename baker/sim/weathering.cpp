@@ -15,6 +15,7 @@
 #include "sim/colluvium.h"
 #include "sim/curvature.h"
 #include "sim/durability.h"
+#include "sim/grid_layout.h"
 #include "sim/response.h"
 #include "sim/rockfall.h"
 
@@ -243,11 +244,14 @@ struct WeatheringSimulation::State {
   std::vector<std::uint8_t> decimate;  // per exposed voxel, this cycle
 };
 
-WeatheringSimulation::WeatheringSimulation(VoxelRock rock, SimParams params)
-    : state_(std::make_unique<State>(std::move(rock), std::move(params))) {}
+WeatheringSimulation::WeatheringSimulation(VoxelRock rock, SimParams params) {
+  requireSimulationCells(rock.layout);
+  state_ = std::make_unique<State>(std::move(rock), std::move(params));
+}
 
 WeatheringSimulation::WeatheringSimulation(SimulationSnapshot snapshot, SimParams params) {
   const GridLayout& g = snapshot.rock.layout;
+  requireSimulationCells(g);
   const auto fits = [&](const RowSpans& spans) {
     const std::size_t rows = std::size_t(g.ny) * std::size_t(g.nz);
     return spans.nx == g.nx && spans.first.size() == rows && spans.values.size() == rows;

@@ -69,6 +69,7 @@ int plannedCycles(const SimParams& preset, double h);
 // cycles. Setup (bit field, exposed set) is done once in the constructor.
 class WeatheringSimulation {
  public:
+  // Both throw std::invalid_argument for a grid over kMaxSimulationCells (sim/grid_layout.h).
   WeatheringSimulation(VoxelRock rock, SimParams params);
   // Resumes a snapshot. Throws std::invalid_argument if it does not fit the parameters' grid.
   WeatheringSimulation(SimulationSnapshot snapshot, SimParams params);

@@ -106,8 +106,10 @@ int runStudio(const StudioOptions& options) {
   const fs::path three_root = web_root / "node_modules" / "three";
   for (const fs::path& needed : {web_root / "index.html", three_root / "build" / "three.module.js"})
     if (!fs::is_regular_file(needed))
-      throw std::runtime_error("the studio page is missing " + needed.string() +
-                               "; run scripts/setup.sh (it installs studio/node_modules from the lock file)");
+      throw std::runtime_error(
+          "the studio page is missing " + needed.string() +
+          "; in a source build run scripts/setup.sh (it installs studio/node_modules from the lock file), "
+          "else install rockbake again (cmake --install lays the page out in share/rockbake/studio)");
 
   // Ctrl-C (and SIGTERM) go to a thread of their own, which stops the server
   // between requests. Blocked first, so that every thread started from here on

@@ -15,7 +15,7 @@ struct StudioOptions {
   int port = 8631;                        // 0: any free port
   int resolution = 64;                    // preview resolution (grid.resolution while in the studio)
   std::filesystem::path out_dir = "out";  // where bake final writes OUT/<name>/
-  std::filesystem::path web_root;         // the page: studio/ of the source tree
+  std::filesystem::path web_root;         // the page: studio/ in rockbake's data folder (core/data_dir.h)
 };
 
 // Serves until SIGINT or SIGTERM, then stops cleanly (a final bake under way

@@ -2,9 +2,11 @@
 # Submits a rockbake library to Slurm: a job array with one shard per task, then
 # a merge job that builds the index once the array is over.
 #
-#   deploy/slurm/submit.sh [OPTIONS] LIBRARY.yaml OUT [-- EXTRA rockbake library ARGS...]
+#   submit.sh [OPTIONS] LIBRARY.yaml OUT [-- EXTRA rockbake library ARGS...]
 #
-# OUT must be on a filesystem every node shares. Prints the two job ids.
+# Installed as <prefix>/share/rockbake/slurm/submit.sh beside the job scripts; runs
+# the installed rockbake on PATH unless told otherwise. OUT must be on a filesystem
+# every node shares. Prints the two job ids.
 set -euo pipefail
 
 usage() {
@@ -21,8 +23,9 @@ options:
   -c, --cpus-per-task C   CPUs per shard; rockbake runs that many threads (default 4)
       --tasks LIST        submit only these array tasks of the N shards, e.g. 2,5
                           (re-running failed shards; finished jobs are skipped anyway)
-      --rockbake PATH     the rockbake executable, visible on every node
-                          (default: $ROCKBAKE_BIN, else `rockbake` on PATH)
+      --rockbake PATH     the rockbake executable, installed where every node sees it
+                          at the same path (default: $ROCKBAKE_BIN, else the installed
+                          `rockbake` on PATH)
       --index-after any|ok  build the index after the array ends whatever happened
                           (any, default: a partial index of what finished) or only
                           when every task succeeded (ok)
@@ -102,7 +105,9 @@ else
 fi
 
 command -v sbatch >/dev/null || fail "sbatch not found: run this on a Slurm submit host"
-resolved=$(command -v "$bin") || fail "rockbake executable '$bin' not found: pass --rockbake PATH or set ROCKBAKE_BIN"
+resolved=$(command -v "$bin") \
+  || fail "rockbake executable '$bin' not found: install rockbake where every node sees it (cmake --install build --prefix /shared/rockbake, or the .deb on every node) and put its bin/ on PATH, or pass --rockbake PATH"
+# The real file, not a link to it: rockbake finds its data beside its own bin/ folder.
 bin=$(realpath "$resolved")
 
 mkdir -p "$out"

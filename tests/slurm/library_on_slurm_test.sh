@@ -1,22 +1,26 @@
 #!/usr/bin/env bash
 # Bakes a small library as a 4-task Slurm job array on a real single-node
-# cluster, through deploy/slurm/submit.sh, and checks that the result equals
-# the same library baked on one machine without Slurm: meshes and VDBs byte
-# for byte, images pixel for pixel, manifests and the index equal apart from
-# what varies run to run ("timings", "host", stats.json's stage seconds).
+# cluster, as a site runs it: the build installed into a prefix
+# (`cmake --install`), its bin/ on PATH and its share/rockbake/slurm/submit.sh
+# submitting with the default `--rockbake` (the rockbake on PATH). Checks that
+# the result equals the same library baked on one machine by the build tree's
+# rockbake without Slurm: meshes and VDBs byte for byte, images pixel for pixel,
+# manifests and the index equal apart from what varies run to run ("timings",
+# "host", stats.json's stage seconds).
 #
-#   library_on_slurm_test.sh ROCKBAKE_EXECUTABLE SOURCE_DIR
+#   library_on_slurm_test.sh ROCKBAKE_EXECUTABLE SOURCE_DIR BUILD_DIR
 #
 # Needs root and the Slurm, MUNGE, jq and OpenImageIO tools that
 # scripts/setup.sh installs; without them it fails, saying so.
 set -euo pipefail
 
-[ $# -eq 2 ] || {
-  echo "usage: $0 ROCKBAKE_EXECUTABLE SOURCE_DIR" >&2
+[ $# -eq 3 ] || {
+  echo "usage: $0 ROCKBAKE_EXECUTABLE SOURCE_DIR BUILD_DIR" >&2
   exit 2
 }
 rockbake=$(realpath "$1")
 source_dir=$(realpath "$2")
+build_dir=$(realpath "$3")
 
 started=$SECONDS
 failures=0
@@ -117,11 +121,21 @@ cat >"$work/library/library.yaml" <<'YAML'
 YAML
 jobs=(cube-s3 cube-s4 column-soft column-hard)
 
+# ---------------------------------------------------------------- the installed tool
+prefix=$work/prefix
+cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" 2>&1 || {
+  cat "$work/install.log"
+  die "cmake --install $build_dir --prefix $prefix failed"
+}
+export PATH=$prefix/bin:$PATH
+[ "$(command -v rockbake)" = "$prefix/bin/rockbake" ] || die "the installed rockbake is not first on PATH"
+pass "installed into $prefix; its bin/ is first on PATH"
+
 # ---------------------------------------------------------------- on the cluster
 cluster_start "$work/cluster" || die "the single-node Slurm cluster did not come up"
 pass "single-node Slurm cluster up after $((SECONDS - started)) s ($(sinfo -h -N -o '%N %c CPUs %T' | head -n 1))"
 
-submit=$source_dir/deploy/slurm/submit.sh
+submit=$prefix/share/rockbake/slurm/submit.sh
 logs=$work/cluster-out.slurm-logs
 
 # expect_completed JOBID COUNT WHAT: COUNT tasks of JOBID completed with exit status 0.
@@ -132,15 +146,20 @@ expect_completed() {
   pass "$3: $2 task(s) COMPLETED, exit 0"
 }
 
-ids=$("$submit" --parsable --shards 4 --cpus-per-task 1 \
-  --rockbake "$rockbake" "$work/library/library.yaml" "$work/cluster-out") \
-  || die "deploy/slurm/submit.sh could not submit the library"
+ids=$("$submit" --parsable --shards 4 --cpus-per-task 1 "$work/library/library.yaml" "$work/cluster-out") \
+  || die "the installed submit.sh could not submit the library"
 read -r array_id index_id <<<"$ids"
 echo "array job $array_id, index job $index_id"
 cluster_wait_jobs 300 "$array_id" "$index_id" || die "the Slurm jobs did not finish within 300 s"
 expect_completed "$array_id" 4 "array job"
 expect_completed "$index_id" 1 "index job"
 
+# The tasks ran the installed rockbake (submit.sh's default: the one on PATH).
+if grep -q -F "with $prefix/bin/rockbake" "$logs/shard-${array_id}_0.out" 2>/dev/null; then
+  pass "the array tasks ran the installed $prefix/bin/rockbake"
+else
+  fail_check "array task 0 did not run $prefix/bin/rockbake: $(head -n 3 "$logs/shard-${array_id}_0.out" 2>/dev/null)"
+fi
 # Each task baked its own shard: rockbake in task i says it baked shard i/4.
 for i in 0 1 2 3; do
   log=$logs/shard-${array_id}_$i.out
@@ -157,9 +176,8 @@ done
 stamps() { stat -c '%n %i %Y' "$work"/cluster-out/{cube-s3,cube-s4,column-hard}/manifest.json; }
 before=$(stamps)
 rm "$work/cluster-out/column-soft/manifest.json" "$work/cluster-out/column-soft/render.png"
-ids=$("$submit" --parsable --shards 4 --tasks 2 --cpus-per-task 1 \
-  --rockbake "$rockbake" "$work/library/library.yaml" "$work/cluster-out") \
-  || die "deploy/slurm/submit.sh could not submit the re-run of task 2"
+ids=$("$submit" --parsable --shards 4 --tasks 2 --cpus-per-task 1 "$work/library/library.yaml" "$work/cluster-out") \
+  || die "the installed submit.sh could not submit the re-run of task 2"
 read -r rerun_id rerun_index_id <<<"$ids"
 cluster_wait_jobs 200 "$rerun_id" "$rerun_index_id" || die "the re-run did not finish within 200 s"
 expect_completed "$rerun_id" 1 "re-run of task 2"
