@@ -1,13 +1,13 @@
-// BakeAsset: the recipe. One validated preset in, one asset folder out:
-//   preset ─▶ initial rock ─▶ weathering cycles ─▶ meshes and exports
-//   (pipeline/bake_meshes.h) ─▶ rock.vdb (rock_sdf = the meshes' smoothed
-//   field) ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json ─▶
-//   manifest.json (last), all in OUT/<name>/; with --no-mesh, rock.vdb
-//   (occupancy rock_sdf), stats.json and manifest.json
-// Each stage is a function of the previous stage's value. The bake writes into
-// a hidden folder beside OUT/<name> (OUT/.<name>.baking-<pid>) and renames it
-// into place at the end, replacing the previous asset: a bake that fails or is
-// interrupted leaves the previous complete asset folder, or none.
+// BakeAsset: the recipe. One validated preset in, one asset folder out, as a
+// sequence of phases, each a function of the one before (bake_asset.cpp):
+//   start the simulation (the initial rock, or a checkpoint's state)
+//   ─▶ simulate (cycles, checkpoints) ─▶ meshes and exports, rock.vdb
+//   (pipeline/bake_meshes.h; rock_sdf = the meshes' smoothed field; with
+//   --no-mesh, the occupancy) ─▶ render (EXR + PNG preview) ─▶ describe
+//   (asset.json) ─▶ stats.json ─▶ manifest.json (last) ─▶ commit.
+// The bake writes into a hidden folder beside OUT/<name> (OUT/.<name>.baking-<pid>)
+// and renames it into place at the end, replacing the previous asset: a bake
+// that fails or is interrupted leaves the previous complete asset folder, or none.
 #pragma once
 
 #include <atomic>
@@ -17,9 +17,10 @@
 #include <string>
 
 #include "inputs/resolve_shape.h"
-#include "pipeline/checkpoint.h"
+#include "pipeline/bake_timings.h"
 #include "pipeline/manifest.h"
 #include "preset/preset.h"
+#include "sim/checkpoint_format.h"
 
 namespace rockbake {
 
@@ -54,7 +55,8 @@ struct BakeSummary {
   int cycles = 0;
   std::size_t initial_rock = 0;
   std::size_t final_rock = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;  // the bake's own, without load_seconds
+  BakeTimings timings;
 };
 
 // `shape` is readInputs(preset) (pipeline/read_inputs.h), read before the bake
