@@ -24,6 +24,7 @@
 #include "cli/library_progress.h"
 #include "core/abnormal_exit.h"
 #include "core/error.h"
+#include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/library_bake.h"
@@ -111,6 +112,8 @@ int runBake(const BakeArgs& args) {
       if (const auto problem =
               rockbake::renderTemplateProblem(preset.render.template_name, rockbake::renderTemplatesDir()))
         throw rockbake::InputError(preset.locate("render.template"), "render.template", *problem);
+  // And the folder each will replace is rockbake's to replace.
+  for (const auto& preset : presets) rockbake::checkAssetWritable(std::filesystem::path(args.out_dir) / preset.name);
 
   for (std::size_t i = 0; i < presets.size(); ++i) {
     rockbake::BakeOptions options;

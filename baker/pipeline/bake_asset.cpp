@@ -1,11 +1,5 @@
 #include "pipeline/bake_asset.h"
 
-#include <signal.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdlib>
-
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -16,11 +10,11 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
-#include "core/abnormal_exit.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "export/vdb_file.h"
+#include "pipeline/asset_folder.h"
 #include "pipeline/asset_json.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
@@ -38,87 +32,14 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
-// A bake writes into a hidden folder beside its asset folder, OUT/.<name>.baking-<pid>, and renames it into
-// place only when everything, manifest.json last, is written: a bake that fails or is interrupted leaves
-// the previous complete asset, or nothing (not even OUT, when the bake created it).
-class StagingFolder {
- public:
-  // `out_of_memory`: what to say should the process end without unwinding (core/abnormal_exit.h), which
-  // removes the folder then too.
-  StagingFolder(const std::filesystem::path& asset_dir, const std::string& out_of_memory)
-      : final_(asset_dir),
-        staging_(hidden(asset_dir, "baking")),
-        created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())),
-        on_abnormal_exit_(staging_, out_of_memory, created_out_) {
-    removeStale(asset_dir);
-    std::filesystem::remove_all(staging_);
-    std::filesystem::create_directories(staging_);
-  }
-  StagingFolder(const StagingFolder&) = delete;
-  StagingFolder& operator=(const StagingFolder&) = delete;
-  ~StagingFolder() {
-    if (committed_) return;
-    std::error_code ignored;
-    std::filesystem::remove_all(staging_, ignored);
-    if (created_out_) std::filesystem::remove(final_.parent_path(), ignored);  // only if still empty
-  }
-
-  const std::filesystem::path& path() const { return staging_; }
-
-  // The previous asset (if any) is moved aside, the new one renamed into place, then the old one removed.
-  void commit() {
-    const std::filesystem::path old = hidden(final_, "replaced");
-    std::error_code ignored;
-    std::filesystem::remove_all(old, ignored);
-    if (std::filesystem::exists(std::filesystem::symlink_status(final_))) std::filesystem::rename(final_, old);
-    std::filesystem::rename(staging_, final_);
-    committed_ = true;
-    std::filesystem::remove_all(old, ignored);
-  }
-
- private:
-  // What a killed bake of this asset left (.<name>.baking-<pid>, .<name>.replaced-<pid> of a process that is
-  // gone) is removed; a bake of it still running elsewhere is left alone.
-  static void removeStale(const std::filesystem::path& asset_dir) {
-    std::error_code ec;
-    const std::filesystem::path parent = asset_dir.parent_path().empty() ? "." : asset_dir.parent_path();
-    const std::string prefix = "." + asset_dir.filename().string() + ".";
-    for (const auto& entry : std::filesystem::directory_iterator(parent, ec)) {
-      const std::string name = entry.path().filename().string();
-      if (name.rfind(prefix, 0) != 0) continue;
-      const std::size_t dash = name.rfind('-');
-      const std::string kind = name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size());
-      if (dash == std::string::npos || (kind != "baking" && kind != "replaced")) continue;
-      const long pid = std::strtol(name.c_str() + dash + 1, nullptr, 10);
-      if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(entry.path(), ec);
-    }
-  }
-
-  static std::filesystem::path hidden(const std::filesystem::path& dir, const char* what) {
-    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) about "." + std::string.
-    std::string name = ".";
-    name += dir.filename().string();
-    name += '.';
-    name += what;
-    name += '-';
-    name += std::to_string(::getpid());
-    return dir.parent_path() / name;
-  }
-
-  std::filesystem::path final_, staging_;
-  bool created_out_ = false;
-  bool committed_ = false;
-  OnAbnormalExit on_abnormal_exit_;
-};
-
-// What every phase of one bake shares: what it bakes, the staging folder it writes into, the clock and the
-// timings.
+// What every phase of one bake shares: what it bakes, the staging folder it writes into (taken, with the
+// asset's lock and the check that OUT/<name> may be replaced, before any work), the clock and the timings.
 struct Bake {
   Bake(const Preset& preset, const BakeOptions& options)
       : preset(preset),
         options(options),
         asset_dir(options.out_dir / preset.name),
-        staging(asset_dir, outOfMemoryMessage(preset)),
+        staging(asset_dir, outOfMemoryMessage(preset), options.lock),
         before(beginAssetFolder(staging.path())) {
     timings.load = options.load_seconds;
   }

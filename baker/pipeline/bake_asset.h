@@ -5,9 +5,12 @@
 //   (pipeline/bake_meshes.h; rock_sdf = the meshes' smoothed field; with
 //   --no-mesh, the occupancy) ─▶ render (EXR + PNG preview) ─▶ describe
 //   (asset.json) ─▶ stats.json ─▶ manifest.json (last) ─▶ commit.
-// The bake writes into a hidden folder beside OUT/<name> (OUT/.<name>.baking-<pid>)
-// and renames it into place at the end, replacing the previous asset: a bake
-// that fails or is interrupted leaves the previous complete asset folder, or none.
+// The bake writes into a hidden folder beside OUT/<name> and commits it in
+// one step, replacing the previous asset only when that is an asset folder
+// rockbake wrote (pipeline/asset_folder.h): a bake that fails or is
+// interrupted leaves the previous complete asset folder, or none. Throws
+// InputError, before any work, when OUT/<name> is not rockbake's to replace,
+// OUT is a file, or another live process is writing the asset.
 #pragma once
 
 #include <atomic>
@@ -23,6 +26,8 @@
 #include "sim/checkpoint_format.h"
 
 namespace rockbake {
+
+class AssetLock;
 
 struct BakeOptions {
   std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
@@ -43,6 +48,9 @@ struct BakeOptions {
   // When set, the simulation starts from this checkpoint's state instead of
   // the initial rock (`rockbake resume`); the preset must be on its grid.
   const Checkpoint* resume = nullptr;
+  // The asset's lock when the caller holds it (a library job keeps it for its
+  // failure record); nullptr: the bake takes it.
+  const AssetLock* lock = nullptr;
 };
 
 class BakeCancelled : public std::runtime_error {
