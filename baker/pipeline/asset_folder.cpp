@@ -142,8 +142,8 @@ std::string holderOf(int fd) {
 }
 
 bool sameFile(int fd, const fs::path& file) {
-  struct stat open_file {
-  }, named{};
+  struct stat open_file {};
+  struct stat named {};
   return ::fstat(fd, &open_file) == 0 && ::stat(file.c_str(), &named) == 0 && open_file.st_ino == named.st_ino &&
          open_file.st_dev == named.st_dev;
 }
