@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "core/sha256.h"
 #include "fuzz_support.h"
-#include "pipeline/checkpoint.h"
+#include "sim/checkpoint_format.h"
 
 using namespace rockbake;
 

@@ -73,7 +73,11 @@ std::string shellQuote(const std::string& s) {
 }  // namespace
 
 CommandResult runRockbake(const std::vector<std::string>& args) {
-  std::string command = shellQuote(ROCKBAKE_EXECUTABLE);
+  return runRockbakeUnder("", args);
+}
+
+CommandResult runRockbakeUnder(const std::string& shell_prefix, const std::vector<std::string>& args) {
+  std::string command = shell_prefix + shellQuote(ROCKBAKE_EXECUTABLE);
   for (const auto& a : args) {
     command += ' ';
     command += shellQuote(a);
@@ -86,7 +90,7 @@ CommandResult runRockbake(const std::vector<std::string>& args) {
   std::size_t n;
   while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
-  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
   return result;
 }
 

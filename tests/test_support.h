@@ -41,6 +41,9 @@ struct CommandResult {
 };
 // Runs the built rockbake executable with `args` (shell-quoted here).
 CommandResult runRockbake(const std::vector<std::string>& args);
+// The same, after `shell_prefix` in the same shell command line: "ulimit -v 600000; ", "ENV=value ".
+// A rockbake ended by a signal gives 128 + the signal's number, as shells report it.
+CommandResult runRockbakeUnder(const std::string& shell_prefix, const std::vector<std::string>& args);
 
 std::filesystem::path sourceDir();
 void writeText(const std::filesystem::path& file, const std::string& text);

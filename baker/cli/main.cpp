@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -25,6 +26,7 @@
 #include "core/abnormal_exit.h"
 #include "core/data_dir.h"
 #include "core/error.h"
+#include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/library_bake.h"
@@ -69,6 +71,49 @@ std::unique_ptr<tbb::global_control> limitThreads(int threads) {
   return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 }
 
+// ---- options more than one subcommand takes, declared once ----
+
+// --resolution takes what grid.resolution takes.
+const CLI::Range kResolutionRange(rockbake::GridParams::kMinResolution, rockbake::GridParams::kMaxResolution);
+
+void addThreads(CLI::App* command, int& threads, const std::string& help = "Worker threads (default: all cores)") {
+  command->add_option("--threads", threads, help)->check(CLI::Range(1, 1024));
+}
+
+void addOut(CLI::App* command, std::string& out_dir, const std::string& help = "Output folder (default: out)") {
+  command->add_option("-o,--out", out_dir, help);
+}
+
+void addSets(CLI::App* command, std::vector<std::string>& sets,
+             const std::string& help = "Override a preset key: key.path=YAML value (repeatable)") {
+  command->add_option("--set", sets, help);
+}
+
+void addSeed(CLI::App* command, std::optional<std::uint64_t>& seed, const std::string& help) {
+  command->add_option("--seed", seed, help)->check(kSeedValidator);
+}
+
+void addResolution(CLI::App* command, std::optional<int>& resolution, const std::string& help) {
+  command->add_option("--resolution", resolution, help)->check(kResolutionRange);
+}
+
+// What a bake writes: --no-mesh, --no-render.
+struct StageSwitches {
+  bool no_mesh = false;
+  bool no_render = false;
+};
+
+void addStageSwitches(CLI::App* command, StageSwitches& switches) {
+  command->add_flag("--no-mesh", switches.no_mesh, "Skip meshing (and so rendering)");
+  command->add_flag("--no-render", switches.no_render, "Skip rendering");
+}
+
+void addCheckpointEvery(CLI::App* command, double& every, const std::string& help) {
+  command->add_option("--checkpoint-every", every, help)->check(CLI::PositiveNumber);
+}
+
+// ---- bake ----
+
 struct BakeArgs {
   std::vector<std::string> presets;
   std::string out_dir = "out";
@@ -76,75 +121,110 @@ struct BakeArgs {
   std::optional<std::uint64_t> seed;
   std::vector<std::string> sets;
   std::optional<int> resolution;
-  bool no_mesh = false;
-  bool no_render = false;
+  StageSwitches switches;
   double checkpoint_every = 0.0;
 };
 
-// --resolution takes what grid.resolution takes.
-const CLI::Range kResolutionRange(rockbake::GridParams::kMinResolution, rockbake::GridParams::kMaxResolution);
+CLI::App* declareBake(CLI::App& app, BakeArgs& args) {
+  CLI::App* command = app.add_subcommand("bake", "Weather and bake one asset per preset into OUT/<name>/");
+  command->add_option("presets", args.presets, "Preset YAML files")->required()->check(CLI::ExistingFile);
+  addOut(command, args.out_dir);
+  addThreads(command, args.threads);
+  addSeed(command, args.seed, "Override the presets' seed");
+  addSets(command, args.sets);
+  addResolution(command, args.resolution, "Override grid.resolution (voxels along the longest side)");
+  addStageSwitches(command, args.switches);
+  addCheckpointEvery(command, args.checkpoint_every,
+                     "Save the simulation state every T units of time to OUT/<name>/checkpoints/<time>.rbk");
+  return command;
+}
 
-int runBake(const BakeArgs& args) {
-  const auto thread_limit = limitThreads(args.threads);
-  rockbake::PresetOverrides overrides{args.sets, args.seed, args.resolution};
-
-  // Every preset is validated before anything is baked, so a typo in the
-  // last one does not leave the first ones half done.
+// Every preset, its files, its render template and the folder it will replace are checked before anything
+// is baked, so a problem with the last one does not leave the first ones done.
+struct LoadedPresets {
   std::vector<rockbake::Preset> presets;
   std::vector<rockbake::ResolvedShape> shapes;
   std::vector<double> load_seconds;
+};
+
+LoadedPresets loadPresetsToBake(const BakeArgs& args, const rockbake::PresetOverrides& overrides) {
+  LoadedPresets loaded;
   for (const auto& file : args.presets) {
     const auto start = std::chrono::steady_clock::now();
-    presets.push_back(rockbake::loadPreset(file, overrides));
-    shapes.push_back(rockbake::readInputs(presets.back()));
-    load_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    loaded.presets.push_back(rockbake::loadPreset(file, overrides));
+    loaded.shapes.push_back(rockbake::readInputs(loaded.presets.back()));
+    loaded.load_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  const auto& presets = loaded.presets;
   for (std::size_t i = 0; i < presets.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (presets[i].name == presets[j].name)
         throw rockbake::InputError(presets[i].locate("name"), "name",
                                    "'" + presets[i].name + "' is also the name of " + args.presets[j],
                                    "assets are written to OUT/<name>; give each preset its own name");
-
-  // The render template of every preset exists before anything is baked (the default one too).
-  if (!args.no_mesh && !args.no_render)
+  // The render template of every preset exists (the default one too).
+  if (!args.switches.no_mesh && !args.switches.no_render)
     for (const auto& preset : presets)
       if (const auto problem =
               rockbake::renderTemplateProblem(preset.render.template_name, rockbake::renderTemplatesDir()))
         throw rockbake::InputError(preset.locate("render.template"), "render.template", *problem);
+  for (const auto& preset : presets) rockbake::checkAssetWritable(std::filesystem::path(args.out_dir) / preset.name);
+  return loaded;
+}
 
-  for (std::size_t i = 0; i < presets.size(); ++i) {
+int runBake(const BakeArgs& args) {
+  const auto thread_limit = limitThreads(args.threads);
+  const rockbake::PresetOverrides overrides{args.sets, args.seed, args.resolution};
+  const LoadedPresets loaded = loadPresetsToBake(args, overrides);
+  for (std::size_t i = 0; i < loaded.presets.size(); ++i) {
+    const rockbake::Preset& preset = loaded.presets[i];
     rockbake::BakeOptions options;
     options.out_dir = args.out_dir;
-    options.mesh = !args.no_mesh;
-    options.render = !args.no_render;
-    options.load_seconds = load_seconds[i];
+    options.mesh = !args.switches.no_mesh;
+    options.render = !args.switches.no_render;
+    options.load_seconds = loaded.load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
     options.checkpoint_every = args.checkpoint_every;
     rockbake::BakeSummary summary;
     try {
-      summary = rockbake::bakeAsset(presets[i], shapes[i], options);
+      summary = rockbake::bakeAsset(preset, loaded.shapes[i], options);
     } catch (const std::bad_alloc&) {
-      throw std::runtime_error(outOfMemoryMessage(&presets[i]));
+      throw std::runtime_error(outOfMemoryMessage(&preset));
     } catch (const std::length_error&) {
-      throw std::runtime_error(outOfMemoryMessage(&presets[i]));
+      throw std::runtime_error(outOfMemoryMessage(&preset));
     }
-    spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", presets[i].name, summary.cycles,
+    spdlog::info("{}: {} cycles, rock {} → {} voxels in {:.2f} s → {}", preset.name, summary.cycles,
                  summary.initial_rock, summary.final_rock, summary.seconds, summary.asset_dir.string());
   }
   return kExitOk;
 }
+
+// ---- resume ----
 
 struct ResumeArgs {
   std::string checkpoint;
   std::vector<std::string> sets;
   std::string out_dir = "out";
   int threads = 0;
-  bool no_mesh = false;
-  bool no_render = false;
+  StageSwitches switches;
   double checkpoint_every = 0.0;
 };
+
+CLI::App* declareResume(CLI::App& app, ResumeArgs& args) {
+  CLI::App* command = app.add_subcommand("resume", "Continue a checkpoint, with edits, into OUT/<name>/");
+  command->add_option("checkpoint", args.checkpoint, "A .rbk file written by bake --checkpoint-every")
+      ->required()
+      ->check(CLI::ExistingFile);
+  addSets(command, args.sets,
+          "Edit: durability.points/noise, bubbles, response (keyframes at the checkpoint's time), colluvium, "
+          "rockfall, time (repeatable)");
+  addOut(command, args.out_dir);
+  addThreads(command, args.threads);
+  addStageSwitches(command, args.switches);
+  addCheckpointEvery(command, args.checkpoint_every, "Save checkpoints as bake does");
+  return command;
+}
 
 // Continues a checkpoint (with edits) into OUT/<name>/, as the bake it came from would have gone on.
 int runResume(const ResumeArgs& args) {
@@ -153,8 +233,8 @@ int runResume(const ResumeArgs& args) {
   const rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
   rockbake::BakeOptions options;
   options.out_dir = args.out_dir;
-  options.mesh = !args.no_mesh;
-  options.render = !args.no_render;
+  options.mesh = !args.switches.no_mesh;
+  options.render = !args.switches.no_render;
   options.render_threads = args.threads;
   options.manifest.overrides = plan.overrides;
   options.checkpoint_every = args.checkpoint_every;
@@ -166,11 +246,23 @@ int runResume(const ResumeArgs& args) {
   return kExitOk;
 }
 
+// ---- render ----
+
 struct RenderArgs {
   std::string asset_dir;
   std::string template_name;
   int threads = 0;
 };
+
+CLI::App* declareRender(CLI::App& app, RenderArgs& args) {
+  CLI::App* command = app.add_subcommand("render", "Render a baked asset again, without re-simulating");
+  command->add_option("asset_dir", args.asset_dir, "An asset folder written by `rockbake bake` (OUT/<name>)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--template", args.template_name, "A template in render_templates/ (default: the preset's)");
+  addThreads(command, args.threads, "POV-Ray threads (default: all cores)");
+  return command;
+}
 
 int runRender(const RenderArgs& args) {
   if (!args.template_name.empty())
@@ -181,9 +273,18 @@ int runRender(const RenderArgs& args) {
   return kExitOk;
 }
 
+// ---- lint ----
+
 struct LintArgs {
   std::vector<std::string> presets;
 };
+
+CLI::App* declareLint(CLI::App& app, LintArgs& args) {
+  CLI::App* command =
+      app.add_subcommand("lint", "Check presets and list every problem (file:line:col: key.path: problem)");
+  command->add_option("presets", args.presets, "Preset YAML files")->required();
+  return command;
+}
 
 // Lists every problem of every preset, one per line ("file:line:col: key.path: problem (hint)"), and
 // "FILE: ok" for each clean one.
@@ -209,12 +310,26 @@ int runLint(const LintArgs& args) {
   return kExitBadInput;
 }
 
+// ---- preset show ----
+
 struct PresetShowArgs {
   std::string preset;
   std::vector<std::string> sets;
   std::optional<std::uint64_t> seed;
   std::optional<int> resolution;
 };
+
+CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
+  CLI::App* preset = app.add_subcommand("preset", "Inspect presets");
+  preset->require_subcommand(1);
+  CLI::App* command = preset->add_subcommand(
+      "show", "Print the resolved preset as JSON: extends merged, overrides applied, every default filled in");
+  command->add_option("preset", args.preset, "A preset YAML file")->required();
+  addSets(command, args.sets);
+  addSeed(command, args.seed, "Override the preset's seed");
+  addResolution(command, args.resolution, "Override grid.resolution");
+  return command;
+}
 
 // Prints the preset as a bake would run it: extends merged, overrides applied, every default filled in
 // (the JSON stats.json embeds).
@@ -223,6 +338,36 @@ int runPresetShow(const PresetShowArgs& args) {
   std::cout << rockbake::presetToJson(preset).dump(2) << std::endl;
   return kExitOk;
 }
+
+// ---- studio ----
+
+struct StudioArgs {
+  std::string preset;
+  std::string out_dir = "out";
+  rockbake::StudioOptions options;
+};
+
+CLI::App* declareStudio(CLI::App& app, StudioArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "studio", "Edit the durability graph while the rock weathers, in a local web page (docs/studio.md)");
+  command->add_option("preset", args.preset, "A preset YAML file")->required()->check(CLI::ExistingFile);
+  command->add_option("--port", args.options.port, "TCP port (default: 8631; 0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  command->add_option("--host", args.options.host, "Address to listen on (default: 127.0.0.1, this machine only)");
+  command->add_option("--resolution", args.options.resolution, "Preview resolution (default: 64)")
+      ->check(CLI::Range(8, 2048));
+  addOut(command, args.out_dir, "Where bake final writes OUT/<name>/ (default: out)");
+  return command;
+}
+
+int runStudio(StudioArgs args) {
+  args.options.preset = args.preset;
+  args.options.out_dir = args.out_dir;
+  args.options.web_root = rockbake::requireDataPath("studio");
+  return rockbake::runStudio(args.options);
+}
+
+// ---- library ----
 
 struct LibraryArgs {
   std::string library;
@@ -233,9 +378,29 @@ struct LibraryArgs {
   int threads = 0;
   std::vector<std::string> sets;
   std::optional<int> resolution;
-  bool no_mesh = false;
-  bool no_render = false;
+  StageSwitches switches;
 };
+
+CLI::App* declareLibrary(CLI::App& app, LibraryArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "library", "Bake every job of a library file (presets × seeds × wedges) into OUT/<job>/, with an index");
+  command->add_option("library", args.library, "Library YAML file")->check(CLI::ExistingFile);
+  addOut(command, args.out_dir);
+  command->add_option("--jobs", args.jobs, "Jobs baked at once (default: 1)")->check(CLI::Range(1, 256));
+  command->add_option("--shard", args.shard, "Bake only shard I of N (I/N, from 0): every N-th job")->type_name("I/N");
+  command
+      ->add_option("--index-only", args.index_only,
+                   "Only rebuild OUT/index.json and contact_sheet.png from the asset folders in OUT")
+      ->type_name("OUT")
+      ->excludes("library")
+      ->excludes("--out")
+      ->excludes("--shard");
+  addThreads(command, args.threads);
+  addSets(command, args.sets, "Override a key of every job's preset, before its wedge (repeatable)");
+  addResolution(command, args.resolution, "Override grid.resolution of every job");
+  addStageSwitches(command, args.switches);
+  return command;
+}
 
 std::atomic<bool> library_interrupted{false};
 
@@ -254,19 +419,40 @@ void installLibraryInterruptHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-// `rockbake library`: every job of a library file (or of one shard of it), then the index. Exit status 0 when
-// every job baked or was already complete, 1 when any failed, 130 when interrupted, 2 for a bad library file
-// or bad arguments (nothing is written then).
-int runLibrary(const LibraryArgs& args, bool verbose) {
+// `rockbake library --index-only OUT`: exit 1 when a folder is damaged.
+int runLibraryIndexOnly(const std::string& out_dir) {
   namespace fs = std::filesystem;
-  if (!args.index_only.empty()) {
-    if (!fs::is_directory(args.index_only))
-      throw rockbake::InputError({args.index_only}, "", "not a folder", "give the OUT folder the shards baked into");
-    const auto counts = rockbake::writeLibraryIndex(args.index_only, {}, {{"index_only", true}});
-    spdlog::info("{}: {} assets ok, {} failed, {} damaged", (fs::path(args.index_only) / rockbake::kIndexFile).string(),
-                 counts.ok + counts.skipped_resumed, counts.failed, counts.damaged);
-    return counts.damaged > 0 ? kExitFailure : kExitOk;
+  if (!fs::is_directory(out_dir))
+    throw rockbake::InputError({out_dir}, "", "not a folder", "give the OUT folder the shards baked into");
+  const auto counts = rockbake::writeLibraryIndex(out_dir, {}, {{"index_only", true}});
+  spdlog::info("{}: {} assets ok, {} failed, {} damaged", (fs::path(out_dir) / rockbake::kIndexFile).string(),
+               counts.ok + counts.skipped_resumed, counts.failed, counts.damaged);
+  return counts.damaged > 0 ? kExitFailure : kExitOk;
+}
+
+// The run's end in one line, and its exit status: 130 interrupted, 1 when a job failed, else 0.
+int reportLibraryRun(const rockbake::LibraryBakeResult& result, const std::string& out_dir) {
+  const std::string summary =
+      fmt::format("{} baked, {} already complete, {} failed{} → {}", result.baked, result.skipped, result.failed,
+                  result.not_run ? fmt::format(", {} not run", result.not_run) : "",
+                  (std::filesystem::path(out_dir) / rockbake::kIndexFile).string());
+  if (result.cancelled) {
+    spdlog::warn("interrupted: {}; run the same command again to finish", summary);
+    return kExitInterrupted;
   }
+  if (result.failed > 0) {
+    spdlog::error("{}; see the messages above or index.json", summary);
+    return kExitFailure;
+  }
+  spdlog::info("{}", summary);
+  return kExitOk;
+}
+
+// `rockbake library`: every job of a library file (or of one shard of it), then the index. Exit status 0 when
+// every job baked or was already complete, 1 when any failed, 130 when interrupted, 2 for a bad library file,
+// bad arguments or job folders it may not write (nothing is written then).
+int runLibrary(const LibraryArgs& args, bool verbose) {
+  if (!args.index_only.empty()) return runLibraryIndexOnly(args.index_only);
   if (args.library.empty())
     throw rockbake::InputError({"<command line>"}, "", "a library file is needed (or --index-only OUT)",
                                "rockbake library LIBRARY.yaml -o OUT");
@@ -283,8 +469,8 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   options.threads = args.threads;
   options.sets = args.sets;
   options.resolution = args.resolution;
-  options.mesh = !args.no_mesh;
-  options.render = !args.no_render && !args.no_mesh;
+  options.mesh = !args.switches.no_mesh;
+  options.render = !args.switches.no_render && !args.switches.no_mesh;
   options.cancel = &library_interrupted;
   rockbake::LibraryProgress progress(jobs.size(), std::max(1, args.jobs), ::isatty(STDERR_FILENO) == 1,
                                      &library_interrupted);
@@ -300,21 +486,29 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   if (!verbose) spdlog::set_level(spdlog::level::info);
+  return reportLibraryRun(result, args.out_dir);
+}
 
-  const std::string summary =
-      fmt::format("{} baked, {} already complete, {} failed{} → {}", result.baked, result.skipped, result.failed,
-                  result.not_run ? fmt::format(", {} not run", result.not_run) : "",
-                  (fs::path(args.out_dir) / rockbake::kIndexFile).string());
-  if (result.cancelled) {
-    spdlog::warn("interrupted: {}; run the same command again to finish", summary);
-    return kExitInterrupted;
-  }
-  if (result.failed > 0) {
-    spdlog::error("{}; see the messages above or index.json", summary);
+// ---- the command line ----
+
+// `what` run, its failures turned into exit statuses: 2 for what the user gave (InputError), 1 otherwise,
+// with a sentence for running out of memory.
+int exitStatusOf(const std::function<int()>& what) {
+  try {
+    return what();
+  } catch (const rockbake::InputError& e) {
+    spdlog::error("{}", e.what());
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("{}", outOfMemoryMessage(nullptr));
+    return kExitFailure;
+  } catch (const std::length_error&) {  // a container asked for more than it can ever hold
+    spdlog::error("{}", outOfMemoryMessage(nullptr));
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", rockbake::escapeControlBytes(e.what()));
     return kExitFailure;
   }
-  spdlog::info("{}", summary);
-  return kExitOk;
 }
 
 }  // namespace
@@ -332,96 +526,22 @@ int main(int argc, char** argv) {
   app.add_flag("-v,--verbose", verbose, "Log every stage in detail");
 
   BakeArgs bake;
-  CLI::App* bake_cmd = app.add_subcommand("bake", "Weather and bake one asset per preset into OUT/<name>/");
-  bake_cmd->add_option("presets", bake.presets, "Preset YAML files")->required()->check(CLI::ExistingFile);
-  bake_cmd->add_option("-o,--out", bake.out_dir, "Output folder (default: out)");
-  bake_cmd->add_option("--threads", bake.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  bake_cmd->add_option("--seed", bake.seed, "Override the presets' seed")->check(kSeedValidator);
-  bake_cmd->add_option("--set", bake.sets, "Override a preset key: key.path=YAML value (repeatable)");
-  bake_cmd->add_option("--resolution", bake.resolution, "Override grid.resolution (voxels along the longest side)")
-      ->check(kResolutionRange);
-  bake_cmd->add_flag("--no-mesh", bake.no_mesh, "Skip meshing (and so rendering)");
-  bake_cmd->add_flag("--no-render", bake.no_render, "Skip rendering");
-  bake_cmd
-      ->add_option("--checkpoint-every", bake.checkpoint_every,
-                   "Save the simulation state every T units of time to OUT/<name>/checkpoints/<time>.rbk")
-      ->check(CLI::PositiveNumber);
-
   ResumeArgs resume;
-  CLI::App* resume_cmd = app.add_subcommand("resume", "Continue a checkpoint, with edits, into OUT/<name>/");
-  resume_cmd->add_option("checkpoint", resume.checkpoint, "A .rbk file written by bake --checkpoint-every")
-      ->required()
-      ->check(CLI::ExistingFile);
-  resume_cmd->add_option("--set", resume.sets,
-                         "Edit: durability.points/noise, bubbles, response (keyframes at the checkpoint's time), "
-                         "colluvium, rockfall, time (repeatable)");
-  resume_cmd->add_option("-o,--out", resume.out_dir, "Output folder (default: out)");
-  resume_cmd->add_option("--threads", resume.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  resume_cmd->add_flag("--no-mesh", resume.no_mesh, "Skip meshing (and so rendering)");
-  resume_cmd->add_flag("--no-render", resume.no_render, "Skip rendering");
-  resume_cmd->add_option("--checkpoint-every", resume.checkpoint_every, "Save checkpoints as bake does")
-      ->check(CLI::PositiveNumber);
-
   RenderArgs render;
-  CLI::App* render_cmd = app.add_subcommand("render", "Render a baked asset again, without re-simulating");
-  render_cmd->add_option("asset_dir", render.asset_dir, "An asset folder written by `rockbake bake` (OUT/<name>)")
-      ->required()
-      ->check(CLI::ExistingDirectory);
-  render_cmd->add_option("--template", render.template_name, "A template in render_templates/ (default: the preset's)");
-  render_cmd->add_option("--threads", render.threads, "POV-Ray threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-
   LintArgs lint;
-  CLI::App* lint_cmd =
-      app.add_subcommand("lint", "Check presets and list every problem (file:line:col: key.path: problem)");
-  lint_cmd->add_option("presets", lint.presets, "Preset YAML files")->required();
-
   PresetShowArgs preset_show;
-  CLI::App* preset_cmd = app.add_subcommand("preset", "Inspect presets");
-  preset_cmd->require_subcommand(1);
-  CLI::App* preset_show_cmd = preset_cmd->add_subcommand(
-      "show", "Print the resolved preset as JSON: extends merged, overrides applied, every default filled in");
-  preset_show_cmd->add_option("preset", preset_show.preset, "A preset YAML file")->required();
-  preset_show_cmd->add_option("--set", preset_show.sets, "Override a preset key: key.path=YAML value (repeatable)");
-  preset_show_cmd->add_option("--seed", preset_show.seed, "Override the preset's seed")->check(kSeedValidator);
-  preset_show_cmd->add_option("--resolution", preset_show.resolution, "Override grid.resolution")
-      ->check(kResolutionRange);
-
-  rockbake::StudioOptions studio;
-  std::string studio_preset, studio_out = "out";
-  CLI::App* studio_cmd = app.add_subcommand(
-      "studio", "Edit the durability graph while the rock weathers, in a local web page (docs/studio.md)");
-  studio_cmd->add_option("preset", studio_preset, "A preset YAML file")->required()->check(CLI::ExistingFile);
-  studio_cmd->add_option("--port", studio.port, "TCP port (default: 8631; 0: any free port)")
-      ->check(CLI::Range(0, 65535));
-  studio_cmd->add_option("--host", studio.host, "Address to listen on (default: 127.0.0.1, this machine only)");
-  studio_cmd->add_option("--resolution", studio.resolution, "Preview resolution (default: 64)")
-      ->check(CLI::Range(8, 2048));
-  studio_cmd->add_option("-o,--out", studio_out, "Where bake final writes OUT/<name>/ (default: out)");
-
+  StudioArgs studio;
   LibraryArgs library;
-  CLI::App* library_cmd = app.add_subcommand(
-      "library", "Bake every job of a library file (presets × seeds × wedges) into OUT/<job>/, with an index");
-  library_cmd->add_option("library", library.library, "Library YAML file")->check(CLI::ExistingFile);
-  library_cmd->add_option("-o,--out", library.out_dir, "Output folder (default: out)");
-  library_cmd->add_option("--jobs", library.jobs, "Jobs baked at once (default: 1)")->check(CLI::Range(1, 256));
-  library_cmd->add_option("--shard", library.shard, "Bake only shard I of N (I/N, from 0): every N-th job")
-      ->type_name("I/N");
-  library_cmd
-      ->add_option("--index-only", library.index_only,
-                   "Only rebuild OUT/index.json and contact_sheet.png from the asset folders in OUT")
-      ->type_name("OUT")
-      ->excludes("library")
-      ->excludes("--out")
-      ->excludes("--shard");
-  library_cmd->add_option("--threads", library.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
-  library_cmd->add_option("--set", library.sets, "Override a key of every job's preset, before its wedge (repeatable)");
-  library_cmd->add_option("--resolution", library.resolution, "Override grid.resolution of every job")
-      ->check(kResolutionRange);
-  library_cmd->add_flag("--no-mesh", library.no_mesh, "Skip meshing (and so rendering)");
-  library_cmd->add_flag("--no-render", library.no_render, "Skip rendering");
+  // Each subcommand, declared, and what runs when it is the one given.
+  const std::vector<std::pair<CLI::App*, std::function<int()>>> subcommands = {
+      {declareBake(app, bake), [&] { return runBake(bake); }},
+      {declareResume(app, resume), [&] { return runResume(resume); }},
+      {declareRender(app, render), [&] { return runRender(render); }},
+      {declareLint(app, lint), [&] { return runLint(lint); }},
+      {declarePresetShow(app, preset_show), [&] { return runPresetShow(preset_show); }},
+      {declareStudio(app, studio), [&] { return runStudio(studio); }},
+      {declareLibrary(app, library), [&] { return runLibrary(library, verbose); }},
+  };
 
   try {
     app.parse(argc, argv);
@@ -434,32 +554,7 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   if (verbose) spdlog::set_level(spdlog::level::debug);
-
-  try {
-    if (*bake_cmd) return runBake(bake);
-    if (*render_cmd) return runRender(render);
-    if (*resume_cmd) return runResume(resume);
-    if (*lint_cmd) return runLint(lint);
-    if (*preset_show_cmd) return runPresetShow(preset_show);
-    if (*library_cmd) return runLibrary(library, verbose);
-    if (*studio_cmd) {
-      studio.preset = studio_preset;
-      studio.out_dir = studio_out;
-      studio.web_root = rockbake::requireDataPath("studio");
-      return rockbake::runStudio(studio);
-    }
-  } catch (const rockbake::InputError& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    spdlog::error("{}", outOfMemoryMessage(nullptr));
-    return kExitFailure;
-  } catch (const std::length_error&) {  // a container asked for more than it can ever hold
-    spdlog::error("{}", outOfMemoryMessage(nullptr));
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", rockbake::escapeControlBytes(e.what()));
-    return kExitFailure;
-  }
+  for (const auto& [command, run] : subcommands)
+    if (*command) return exitStatusOf(run);
   return kExitFailure;
 }

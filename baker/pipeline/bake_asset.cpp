@@ -1,29 +1,23 @@
 #include "pipeline/bake_asset.h"
 
-#include <signal.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdlib>
-
-#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
-#include <system_error>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
-#include "core/abnormal_exit.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "export/vdb_file.h"
+#include "pipeline/asset_folder.h"
 #include "pipeline/asset_json.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/checkpoint.h"
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
@@ -35,89 +29,55 @@
 namespace rockbake {
 namespace {
 
-// A bake writes into a hidden folder beside its asset folder, OUT/.<name>.baking-<pid>, and renames it into
-// place only when everything, manifest.json last, is written: a bake that fails or is interrupted leaves
-// the previous complete asset, or nothing (not even OUT, when the bake created it).
-class StagingFolder {
- public:
-  // `out_of_memory`: what to say should the process end without unwinding (core/abnormal_exit.h), which
-  // removes the folder then too.
-  StagingFolder(const std::filesystem::path& asset_dir, const std::string& out_of_memory)
-      : final_(asset_dir),
-        staging_(hidden(asset_dir, "baking")),
-        created_out_(!std::filesystem::exists(asset_dir.parent_path().empty() ? "." : asset_dir.parent_path())),
-        on_abnormal_exit_(staging_, out_of_memory, created_out_) {
-    removeStale(asset_dir);
-    std::filesystem::remove_all(staging_);
-    std::filesystem::create_directories(staging_);
-  }
-  StagingFolder(const StagingFolder&) = delete;
-  StagingFolder& operator=(const StagingFolder&) = delete;
-  ~StagingFolder() {
-    if (committed_) return;
-    std::error_code ignored;
-    std::filesystem::remove_all(staging_, ignored);
-    if (created_out_) std::filesystem::remove(final_.parent_path(), ignored);  // only if still empty
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+// What every phase of one bake shares: what it bakes, the staging folder it writes into (taken, with the
+// asset's lock and the check that OUT/<name> may be replaced, before any work), the clock and the timings.
+struct Bake {
+  Bake(const Preset& preset, const BakeOptions& options)
+      : preset(preset),
+        options(options),
+        asset_dir(options.out_dir / preset.name),
+        staging(asset_dir, outOfMemoryMessage(preset), options.lock),
+        before(beginAssetFolder(staging.path())) {
+    timings.load = options.load_seconds;
   }
 
-  const std::filesystem::path& path() const { return staging_; }
-
-  // The previous asset (if any) is moved aside, the new one renamed into place, then the old one removed.
-  void commit() {
-    const std::filesystem::path old = hidden(final_, "replaced");
-    std::error_code ignored;
-    std::filesystem::remove_all(old, ignored);
-    if (std::filesystem::exists(std::filesystem::symlink_status(final_))) std::filesystem::rename(final_, old);
-    std::filesystem::rename(staging_, final_);
-    committed_ = true;
-    std::filesystem::remove_all(old, ignored);
+  const fs::path& dir() const { return staging.path(); }
+  void progress(double fraction, const char* stage) const {
+    if (options.progress) options.progress(fraction, stage);
+  }
+  void checkCancel() const {
+    if (options.cancel && options.cancel->load()) throw BakeCancelled();
   }
 
- private:
-  // What a killed bake of this asset left (.<name>.baking-<pid>, .<name>.replaced-<pid> of a process that is
-  // gone) is removed; a bake of it still running elsewhere is left alone.
-  static void removeStale(const std::filesystem::path& asset_dir) {
-    std::error_code ec;
-    const std::filesystem::path parent = asset_dir.parent_path().empty() ? "." : asset_dir.parent_path();
-    const std::string prefix = "." + asset_dir.filename().string() + ".";
-    for (const auto& entry : std::filesystem::directory_iterator(parent, ec)) {
-      const std::string name = entry.path().filename().string();
-      if (name.rfind(prefix, 0) != 0) continue;
-      const std::size_t dash = name.rfind('-');
-      const std::string kind = name.substr(prefix.size(), dash == std::string::npos ? 0 : dash - prefix.size());
-      if (dash == std::string::npos || (kind != "baking" && kind != "replaced")) continue;
-      const long pid = std::strtol(name.c_str() + dash + 1, nullptr, 10);
-      if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove_all(entry.path(), ec);
-    }
-  }
-
-  static std::filesystem::path hidden(const std::filesystem::path& dir, const char* what) {
-    // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) about "." + std::string.
-    std::string name = ".";
-    name += dir.filename().string();
-    name += '.';
-    name += what;
-    name += '-';
-    name += std::to_string(::getpid());
-    return dir.parent_path() / name;
-  }
-
-  std::filesystem::path final_, staging_;
-  bool created_out_ = false;
-  bool committed_ = false;
-  OnAbnormalExit on_abnormal_exit_;
+  const Preset& preset;
+  const BakeOptions& options;
+  const fs::path asset_dir;
+  Stopwatch clock;
+  StagingFolder staging;
+  const AssetFolderSnapshot before;
+  BakeTimings timings;
 };
 
-std::string readTextFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + file.string() + " for its checkpoints");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+// A simulation ready to run: from the initial rock, or from a checkpoint's state (`rockbake resume`).
+struct SimulationStart {
+  std::unique_ptr<WeatheringSimulation> simulation;
+  std::size_t initial_rock = 0;
+  json cycles_before = json::array();  // a resumed bake's cycles up to its checkpoint
+};
 
-nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
-  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+// The simulation's result, all the later phases need of it.
+struct Weathered {
+  VoxelRock rock;  // without integrity, which no later phase reads
+  Preset meshing;  // the preset with the bubble graph in effect at the end (the curvature attribute's)
+  json cycles;     // every cycle's statistics, a checkpoint's first
+  std::size_t initial_rock = 0, final_rock = 0, colluvium = 0;
+};
+
+json cyclesToJson(const std::vector<CycleStats>& cycles) {
+  json list = json::array();
   for (const auto& c : cycles)
     list.push_back({{"cycle", c.cycle},
                     {"time", c.time},
@@ -132,183 +92,232 @@ nlohmann::ordered_json cyclesToJson(const std::vector<CycleStats>& cycles) {
   return list;
 }
 
+json concatenated(json first, const json& then) {
+  for (const auto& entry : then) first.push_back(entry);
+  return first;
+}
+
+std::string readTextFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + file.string() + " for its checkpoints");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void checkSameGrid(const Preset& preset, const GridLayout& was) {
+  const GridLayout now = computeGridLayout(preset);
+  if (was.nx != now.nx || was.ny != now.ny || was.nz != now.nz || was.margin != now.margin || was.h != now.h)
+    throw InputError(preset.locate("grid"), "grid",
+                     fmt::format("the checkpoint's grid is {}×{}×{} voxels of {:.4g} and this preset's {}×{}×{} of "
+                                 "{:.4g}",
+                                 was.nx, was.ny, was.nz, was.h, now.nx, now.ny, now.nz, now.h),
+                     "grid, shape, resolution and bubbles larger than the checkpoint's margin cannot change on "
+                     "resume; bake from the start instead");
+}
+
+SimulationStart startSimulation(Bake& bake, const ResolvedShape& shape) {
+  const Preset& preset = bake.preset;
+  SimulationStart start;
+  if (const Checkpoint* resume = bake.options.resume) {
+    checkSameGrid(preset, resume->snapshot.rock.layout);
+    start.simulation = std::make_unique<WeatheringSimulation>(resume->snapshot, preset);
+    start.initial_rock = resume->snapshot.initial_rock;
+    start.cycles_before = resume->cycles;
+  } else {
+    VoxelRock initial = buildInitialRock(shape, preset);
+    start.initial_rock = initial.count(Material::Rock);
+    if (start.initial_rock == 0)
+      throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",
+                       "check its size and center against grid.size, or raise grid.resolution");
+    start.simulation = std::make_unique<WeatheringSimulation>(std::move(initial), preset);
+  }
+  bake.timings.shape = bake.clock.lap();
+  const GridLayout& g = start.simulation->rock().layout;
+  spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles{}", preset.name, g.nx, g.ny, g.nz, g.h,
+               start.initial_rock, plannedCycles(preset, g.h),
+               bake.options.resume ? fmt::format(" (resumed at cycle {})", start.simulation->cycle()) : "");
+  return start;
+}
+
+// Writes OUT/<name>/checkpoints/<time>.rbk each time the simulation passes a multiple of
+// options.checkpoint_every, with the text and overrides that give the preset, so that resume can read it
+// again and tell whether it changed.
+class CheckpointWriter {
+ public:
+  CheckpointWriter(const Bake& bake, const SimulationStart& start)
+      : bake_(bake), every_(bake.options.checkpoint_every) {
+    if (every_ <= 0.0) return;
+    const Preset& preset = bake.preset;
+    const Checkpoint* resume = bake.options.resume;
+    checkpoint_.preset_file = fs::absolute(preset.file);
+    checkpoint_.preset_text = resume ? resume->preset_text : readTextFile(preset.file);
+    checkpoint_.overrides = bake.options.manifest.overrides;
+    checkpoint_.preset = presetToJson(preset);
+    checkpoint_.preset_hash = presetFingerprint(preset, {});
+    cycles_before_ = start.cycles_before;
+    h_ = start.simulation->rock().layout.h;
+    next_ = every_ * (std::floor(start.simulation->cycle() * h_ / every_ + 1e-9) + 1.0);
+  }
+
+  void afterCycle(const WeatheringSimulation& simulation, const std::vector<CycleStats>& cycles) {
+    const double time = cycles.back().time;
+    if (every_ <= 0.0 || time < next_ - 1e-9 * h_ || simulation.finished()) return;
+    checkpoint_.snapshot = simulation.snapshot();
+    checkpoint_.cycles = concatenated(cycles_before_, cyclesToJson(cycles));
+    const fs::path file = bake_.dir() / "checkpoints" / checkpointFileName(time);
+    writeCheckpoint(file, checkpoint_);
+    spdlog::info("{}: checkpoint {}", bake_.preset.name, file.string());
+    while (next_ <= time + 1e-9 * h_) next_ += every_;
+  }
+
+ private:
+  const Bake& bake_;
+  const double every_;
+  double h_ = 1.0, next_ = 0.0;
+  json cycles_before_;
+  Checkpoint checkpoint_;
+};
+
+Weathered simulate(Bake& bake, SimulationStart start) {
+  WeatheringSimulation& simulation = *start.simulation;
+  const int planned = plannedCycles(bake.preset, simulation.rock().layout.h);
+  CheckpointWriter checkpoints(bake, start);
+  std::vector<CycleStats> cycles;
+  for (int last_percent = -1; !simulation.finished();) {
+    const CycleStats& c = cycles.emplace_back(simulation.step());
+    bake.checkCancel();
+    bake.progress(0.7 * c.cycle / planned, "simulate");
+    if (const int percent = 100 * c.cycle / planned; percent / 10 != last_percent / 10) {
+      spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", bake.preset.name, c.cycle, planned,
+                   percent, c.rock, c.exposed, c.decimated);
+      last_percent = percent;
+    }
+    checkpoints.afterCycle(simulation, cycles);
+  }
+  Weathered weathered;
+  weathered.meshing = bake.preset;
+  weathered.meshing.bubbles = simulation.activeParams().bubbles;
+  weathered.rock = simulation.release();
+  start.simulation.reset();  // its working state (air field, bit planes, work lists) is not needed past here
+  bake.timings.simulate = bake.clock.lap();
+  for (const auto& c : cycles) {
+    bake.timings.simulate_curvature += c.curvature_seconds;
+    bake.timings.simulate_colluvium += c.colluvium_seconds;
+    bake.timings.simulate_rockfall += c.rockfall_seconds;
+  }
+  weathered.cycles = concatenated(std::move(start.cycles_before), cyclesToJson(cycles));
+  weathered.initial_rock = start.initial_rock;
+  weathered.final_rock = weathered.rock.count(Material::Rock);
+  weathered.colluvium = weathered.rock.count(Material::Colluvium);
+  weathered.rock.integrity = RowSpans();  // its memory goes before the VDB and meshes
+  return weathered;
+}
+
+// The meshes and their files, then rock.vdb (its rock_sdf the field the meshes came from); with --no-mesh,
+// rock.vdb alone, with the occupancy.
+std::optional<MeshStageResult> meshAndExport(Bake& bake, const Weathered& weathered) {
+  bake.checkCancel();
+  if (!bake.options.mesh) {
+    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb");
+    bake.timings.write_vdb = bake.clock.lap();
+    return std::nullopt;
+  }
+  bake.progress(0.7, "mesh");
+  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing, bake.dir());
+  bake.timings.mesh = MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds,
+                                  meshes.simplify_seconds, meshes.export_seconds};
+  bake.clock.lap();
+  if (exportsFormat(bake.preset, "vdb")) {
+    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes.rock_sdf.get());
+    bake.timings.write_vdb = bake.clock.lap();
+  }
+  return meshes;
+}
+
+void render(Bake& bake, const std::optional<MeshStageResult>& meshes) {
+  if (!meshes || !bake.options.render) return;
+  bake.checkCancel();
+  bake.progress(0.85, "render");
+  RenderRequest request;
+  request.asset_dir = bake.dir();
+  request.params = bake.preset.render;
+  request.preset_name = bake.preset.name;
+  request.seed = bake.preset.seed;
+  request.preset_hash = presetFingerprint(bake.preset, bake.options.manifest);
+  request.threads = bake.options.render_threads;
+  request.cancel = bake.options.cancel;
+  const RenderOutputs rendered = renderAsset(meshes->meshes, request);
+  bake.timings.render = rendered.seconds_total;
+  spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
+               (bake.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
+  bake.clock.lap();
+}
+
+// asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only.
+void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes) {
+  if (!meshes) return;
+  const Preset& preset = bake.preset;
+  AssetDescription asset;
+  asset.name = preset.name;
+  asset.tags = preset.tags;
+  asset.units_per_meter = preset.units_per_meter;
+  asset.lods.push_back({meshes->lod_files.at(0), &meshes->meshes});
+  for (std::size_t i = 0; i < meshes->lods.size(); ++i)
+    asset.lods.push_back({meshes->lod_files.at(i + 1), &meshes->lods[i]});
+  asset.preview = bake.options.render ? "render.png" : "";
+  const ManifestInputs& inputs = bake.options.manifest;
+  const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
+  asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);
+  writeAssetJson(asset, bake.dir());
+}
+
+void writeStats(Bake& bake, const Weathered& weathered) {
+  bake.timings.total = bake.clock.elapsed() + bake.options.load_seconds;
+  json stats;
+  stats["cycles"] = weathered.cycles;
+  stats["stages"] = bakeTimingsJson(bake.timings);
+  stats["preset"] = presetToJson(bake.preset);
+  bake.checkCancel();
+  writeFileAtomically(bake.dir() / "stats.json", stats.dump(2) + "\n");
+}
+
+// Last of the files: its presence says the folder is complete.
+void writeManifestLast(const Bake& bake, const Weathered& weathered) {
+  const ManifestStats stats{int(weathered.cycles.size()), weathered.initial_rock, weathered.final_rock,
+                            weathered.colluvium};
+  writeManifest(bake.before, bake.preset, bake.options.manifest, bake.options.mesh, bake.options.render, stats,
+                {{"stages", bakeTimingsJson(bake.timings)}});
+}
+
+BakeSummary commit(Bake& bake, const Weathered& weathered) {
+  bake.staging.commit();
+  bake.progress(1.0, "done");
+  return {bake.asset_dir,
+          int(weathered.cycles.size()),
+          weathered.initial_rock,
+          weathered.final_rock,
+          bake.timings.total - bake.options.load_seconds,
+          bake.timings};
+}
+
 }  // namespace
 
 BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   return bakeAsset(preset, readInputs(preset), options);
 }
 
+// The recipe. A phase to add (texture maps, collision hulls, a turntable movie) is one more line here, a
+// function above, and its seconds in BakeTimings.
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
-  BakeSummary summary;
-  summary.asset_dir = options.out_dir / preset.name;
-  nlohmann::ordered_json stages;
-  stages["load"] = options.load_seconds;
-  Stopwatch clock;
-  StagingFolder staging(summary.asset_dir, outOfMemoryMessage(preset));
-  const std::filesystem::path& dir = staging.path();
-  const AssetFolderSnapshot before = beginAssetFolder(dir);
-  const auto progress = [&](double fraction, const char* stage) {
-    if (options.progress) options.progress(fraction, stage);
-  };
-  const auto check_cancel = [&] {
-    if (options.cancel && options.cancel->load()) throw BakeCancelled();
-  };
-
-  // The simulation runs cycle by cycle so that its state can be checkpointed,
-  // or started from a checkpoint (docs/libraries.md).
-  std::unique_ptr<WeatheringSimulation> simulation;
-  nlohmann::ordered_json cycles_before =
-      nlohmann::ordered_json::array();  // a resumed bake's cycles up to its checkpoint
-  if (options.resume) {
-    const GridLayout& was = options.resume->snapshot.rock.layout;
-    const GridLayout now = computeGridLayout(preset);
-    if (was.nx != now.nx || was.ny != now.ny || was.nz != now.nz || was.margin != now.margin || was.h != now.h)
-      throw InputError(preset.locate("grid"), "grid",
-                       fmt::format("the checkpoint's grid is {}×{}×{} voxels of {:.4g} and this preset's {}×{}×{} of "
-                                   "{:.4g}",
-                                   was.nx, was.ny, was.nz, was.h, now.nx, now.ny, now.nz, now.h),
-                       "grid, shape, resolution and bubbles larger than the checkpoint's margin cannot change on "
-                       "resume; bake from the start instead");
-    simulation = std::make_unique<WeatheringSimulation>(options.resume->snapshot, preset);
-    summary.initial_rock = options.resume->snapshot.initial_rock;
-    cycles_before = options.resume->cycles;
-  } else {
-    VoxelRock initial = buildInitialRock(shape, preset);
-    if (initial.count(Material::Rock) == 0)
-      throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",
-                       "check its size and center against grid.size, or raise grid.resolution");
-    summary.initial_rock = initial.count(Material::Rock);
-    simulation = std::make_unique<WeatheringSimulation>(std::move(initial), preset);
-  }
-  const GridLayout g = simulation->rock().layout;
-  stages["shape"] = clock.lap();
-  const int planned = plannedCycles(preset, g.h);
-  spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles{}", preset.name, g.nx, g.ny, g.nz, g.h,
-               summary.initial_rock, planned,
-               options.resume ? fmt::format(" (resumed at cycle {})", simulation->cycle()) : "");
-
-  // Checkpoints: the text and overrides that give this preset, so resume can
-  // read it again and tell whether it changed.
-  Checkpoint checkpoint;
-  const double every = options.checkpoint_every;
-  double next_checkpoint = 0.0;
-  if (every > 0.0) {
-    checkpoint.preset_file = std::filesystem::absolute(preset.file);
-    checkpoint.preset_text = options.resume ? options.resume->preset_text : readTextFile(preset.file);
-    checkpoint.overrides = options.manifest.overrides;
-    checkpoint.preset = presetToJson(preset);
-    checkpoint.preset_hash = presetFingerprint(preset, {});
-    next_checkpoint = every * (std::floor(simulation->cycle() * g.h / every + 1e-9) + 1.0);
-  }
-
-  int last_percent = -1;
-  WeatheringResult weathered;
-  while (!simulation->finished()) {
-    const CycleStats& c = weathered.cycles.emplace_back(simulation->step());
-    check_cancel();
-    progress(0.7 * c.cycle / planned, "simulate");
-    const int percent = 100 * c.cycle / planned;
-    if (percent / 10 != last_percent / 10) {
-      spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", preset.name, c.cycle, planned, percent,
-                   c.rock, c.exposed, c.decimated);
-      last_percent = percent;
-    }
-    if (every > 0.0 && c.time >= next_checkpoint - 1e-9 * g.h && !simulation->finished()) {
-      checkpoint.snapshot = simulation->snapshot();
-      checkpoint.cycles = cycles_before;
-      for (const auto& entry : cyclesToJson(weathered.cycles)) checkpoint.cycles.push_back(entry);
-      const auto file = dir / "checkpoints" / checkpointFileName(c.time);
-      writeCheckpoint(file, checkpoint);
-      spdlog::info("{}: checkpoint {}", preset.name, file.string());
-      while (next_checkpoint <= c.time + 1e-9 * g.h) next_checkpoint += every;
-    }
-  }
-  // The curvature attribute is the exposure under the bubble graph in effect
-  // at the end: the latest keyframe's, when one carried bubbles.
-  Preset meshing = preset;
-  meshing.bubbles = simulation->activeParams().bubbles;
-  weathered.rock = simulation->release();
-  // Its working state (air field, bit planes, work lists) is not needed past here.
-  simulation.reset();
-  stages["simulate"] = clock.lap();
-  double curvature = 0, colluvium = 0, rockfall = 0;
-  for (const auto& c : weathered.cycles)
-    curvature += c.curvature_seconds, colluvium += c.colluvium_seconds, rockfall += c.rockfall_seconds;
-  stages["simulate_curvature"] = curvature;
-  stages["simulate_colluvium"] = colluvium;
-  stages["simulate_rockfall"] = rockfall;
-  summary.cycles = int(cycles_before.size() + weathered.cycles.size());
-  summary.final_rock = weathered.rock.count(Material::Rock);
-  // No later stage reads integrity: its memory goes before the VDB and meshes.
-  weathered.rock.integrity = RowSpans();
-
-  check_cancel();
-  if (!options.mesh) {
-    writeRockVdb(weathered.rock, dir / "rock.vdb");
-    stages["write_vdb"] = clock.lap();
-  } else {
-    progress(0.7, "mesh");
-    const MeshStageResult meshes = bakeMeshes(weathered.rock, meshing, dir);
-    stages["mesh_extract"] = meshes.extract_seconds;
-    stages["mesh_subdivide"] = meshes.subdivide_seconds;
-    stages["mesh_attributes"] = meshes.attributes_seconds;
-    stages["mesh_simplify"] = meshes.simplify_seconds;
-    stages["export"] = meshes.export_seconds;
-    clock.lap();
-    // rock_sdf in the VDB is the field the meshes were made from.
-    if (exportsFormat(preset, "vdb")) {
-      writeRockVdb(weathered.rock, dir / "rock.vdb", meshes.rock_sdf.get());
-      stages["write_vdb"] = clock.lap();
-    }
-
-    if (options.render) {
-      check_cancel();
-      progress(0.85, "render");
-      RenderRequest request;
-      request.asset_dir = dir;
-      request.params = preset.render;
-      request.preset_name = preset.name;
-      request.seed = preset.seed;
-      request.preset_hash = presetFingerprint(preset, options.manifest);
-      request.threads = options.render_threads;
-      request.cancel = options.cancel;
-      const RenderOutputs rendered = renderAsset(meshes.meshes, request);
-      stages["render"] = rendered.seconds_total;
-      spdlog::info("{}: rendered {} in {:.1f} s", preset.name,
-                   (summary.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
-      clock.lap();
-    }
-
-    AssetDescription asset;
-    asset.name = preset.name;
-    asset.tags = preset.tags;
-    asset.units_per_meter = preset.units_per_meter;
-    asset.lods.push_back({meshes.lod_files.at(0), &meshes.meshes});
-    for (std::size_t i = 0; i < meshes.lods.size(); ++i)
-      asset.lods.push_back({meshes.lod_files.at(i + 1), &meshes.lods[i]});
-    asset.preview = options.render ? "render.png" : "";
-    const std::filesystem::path base =
-        options.manifest.base_dir.empty() ? preset.file.parent_path() : options.manifest.base_dir;
-    asset.input_hash = bakeInputHash(preset, options.mesh, options.render, base);
-    writeAssetJson(asset, dir);
-  }
-
-  summary.seconds = clock.elapsed();
-  stages["total"] = summary.seconds + options.load_seconds;
-  nlohmann::ordered_json stats;
-  nlohmann::ordered_json all_cycles = cycles_before;
-  for (const auto& entry : cyclesToJson(weathered.cycles)) all_cycles.push_back(entry);
-  stats["cycles"] = all_cycles;
-  stats["stages"] = stages;
-  stats["preset"] = presetToJson(preset);
-  check_cancel();
-  writeFileAtomically(dir / "stats.json", stats.dump(2) + "\n");
-  const ManifestStats manifest_stats{summary.cycles, summary.initial_rock, summary.final_rock,
-                                     weathered.rock.count(Material::Colluvium)};
-  writeManifest(before, preset, options.manifest, options.mesh, options.render, manifest_stats, {{"stages", stages}});
-  staging.commit();
-  progress(1.0, "done");
-  return summary;
+  Bake bake(preset, options);
+  const Weathered weathered = simulate(bake, startSimulation(bake, shape));
+  const std::optional<MeshStageResult> meshes = meshAndExport(bake, weathered);
+  render(bake, meshes);
+  describe(bake, meshes);
+  writeStats(bake, weathered);
+  writeManifestLast(bake, weathered);
+  return commit(bake, weathered);
 }
 
 }  // namespace rockbake

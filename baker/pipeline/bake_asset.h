@@ -1,13 +1,16 @@
-// BakeAsset: the recipe. One validated preset in, one asset folder out:
-//   preset ─▶ initial rock ─▶ weathering cycles ─▶ meshes and exports
-//   (pipeline/bake_meshes.h) ─▶ rock.vdb (rock_sdf = the meshes' smoothed
-//   field) ─▶ POV-Ray render (EXR + PNG preview) ─▶ stats.json ─▶
-//   manifest.json (last), all in OUT/<name>/; with --no-mesh, rock.vdb
-//   (occupancy rock_sdf), stats.json and manifest.json
-// Each stage is a function of the previous stage's value. The bake writes into
-// a hidden folder beside OUT/<name> (OUT/.<name>.baking-<pid>) and renames it
-// into place at the end, replacing the previous asset: a bake that fails or is
-// interrupted leaves the previous complete asset folder, or none.
+// BakeAsset: the recipe. One validated preset in, one asset folder out, as a
+// sequence of phases, each a function of the one before (bake_asset.cpp):
+//   start the simulation (the initial rock, or a checkpoint's state)
+//   ─▶ simulate (cycles, checkpoints) ─▶ meshes and exports, rock.vdb
+//   (pipeline/bake_meshes.h; rock_sdf = the meshes' smoothed field; with
+//   --no-mesh, the occupancy) ─▶ render (EXR + PNG preview) ─▶ describe
+//   (asset.json) ─▶ stats.json ─▶ manifest.json (last) ─▶ commit.
+// The bake writes into a hidden folder beside OUT/<name> and commits it in
+// one step, replacing the previous asset only when that is an asset folder
+// rockbake wrote (pipeline/asset_folder.h): a bake that fails or is
+// interrupted leaves the previous complete asset folder, or none. Throws
+// InputError, before any work, when OUT/<name> is not rockbake's to replace,
+// OUT is a file, or another live process is writing the asset.
 #pragma once
 
 #include <atomic>
@@ -17,11 +20,14 @@
 #include <string>
 
 #include "inputs/resolve_shape.h"
-#include "pipeline/checkpoint.h"
+#include "pipeline/bake_timings.h"
 #include "pipeline/manifest.h"
 #include "preset/preset.h"
+#include "sim/checkpoint_format.h"
 
 namespace rockbake {
+
+class AssetLock;
 
 struct BakeOptions {
   std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
@@ -42,6 +48,9 @@ struct BakeOptions {
   // When set, the simulation starts from this checkpoint's state instead of
   // the initial rock (`rockbake resume`); the preset must be on its grid.
   const Checkpoint* resume = nullptr;
+  // The asset's lock when the caller holds it (a library job keeps it for its
+  // failure record); nullptr: the bake takes it.
+  const AssetLock* lock = nullptr;
 };
 
 class BakeCancelled : public std::runtime_error {
@@ -54,7 +63,8 @@ struct BakeSummary {
   int cycles = 0;
   std::size_t initial_rock = 0;
   std::size_t final_rock = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;  // the bake's own, without load_seconds
+  BakeTimings timings;
 };
 
 // `shape` is readInputs(preset) (pipeline/read_inputs.h), read before the bake

@@ -8,6 +8,14 @@
 // POV-Ray processes; each gets cores / jobs threads. Simulation and meshing
 // are parallel inside each job. Outputs do not depend on `jobs` or `threads`.
 //
+// Before anything is written, every job's folder is checked as a bake checks
+// its own (pipeline/asset_folder.h): OUT must be a folder, and a job folder
+// that rockbake did not write, or that another live process is writing,
+// refuses the whole run with an InputError naming it (exit 2). Each job holds
+// its asset's lock while it runs, so two runs into one OUT (or shards that
+// overlap) never write one asset at once: a job whose lock another process
+// took meanwhile fails, naming it, and writes nothing.
+//
 // Resume: a job whose folder holds a complete manifest with the job's input
 // hash (pipeline/manifest.h) is skipped. A job that fails (bad preset, POV-Ray
 // failure) leaves failure.json with its message; the others go on. When

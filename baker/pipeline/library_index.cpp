@@ -59,87 +59,127 @@ bool naturalLess(const std::string& a, const std::string& b) {
   return a < b;
 }
 
-}  // namespace
+// One folder of OUT as the index lists it.
+struct IndexEntry {
+  enum class Status { Ok, SkippedResumed, Failed, Damaged };
+  Status status = Status::Ok;
+  ordered_json asset;
+  json library;  // {file, sha256} of the library it came from, or null
+  ContactSheetItem tile;
+};
 
-IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::string, std::string>& run_status,
-                              const ordered_json& timings) {
+std::vector<std::string> folderNames(const fs::path& out_dir) {
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(out_dir)) {
     const std::string name = entry.path().filename().string();
     if (entry.is_directory() && !name.empty() && name.front() != '.') names.push_back(name);
   }
   std::sort(names.begin(), names.end(), naturalLess);
+  return names;
+}
 
+IndexEntry damaged(const std::string& name, const std::string& message) {
+  spdlog::warn("{}: damaged: {}; bake it again", name, message);
+  return {IndexEntry::Status::Damaged,
+          {{"name", name}, {"status", "damaged"}, {"message", message}},
+          nullptr,
+          {name, fs::path(), "damaged"}};
+}
+
+IndexEntry finishedAsset(const fs::path& dir, const std::string& name, const json& manifest,
+                         const std::map<std::string, std::string>& run_status) {
+  const json& inputs = manifest["inputs"];
+  const auto run = run_status.find(name);
+  const std::string status = run != run_status.end() ? run->second : "ok";
+  bool rendered = false, described = false;
+  for (const auto& output : manifest.value("outputs", json::array())) {
+    rendered = rendered || (output.is_object() && output.value("path", "") == "render.png");
+    described = described || (output.is_object() && output.value("path", "") == kAssetFile);
+  }
+  IndexEntry entry;
+  entry.status = status == "skipped-resumed" ? IndexEntry::Status::SkippedResumed : IndexEntry::Status::Ok;
+  entry.asset["name"] = name;
+  entry.asset["status"] = status;
+  entry.asset["job"] = inputs.value("job", json(nullptr));
+  entry.asset["input_hash"] = inputs.value("input_hash", "");
+  entry.asset["manifest"] = name + "/" + kManifestFile;
+  entry.asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
+  entry.asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
+  entry.library = inputs.value("library", json(nullptr));
+  entry.tile = {name, rendered ? dir / "render.png" : fs::path(), "no render"};
+  return entry;
+}
+
+IndexEntry failedJob(const std::string& name, const json& failure) {
+  IndexEntry entry;
+  entry.status = IndexEntry::Status::Failed;
+  entry.asset["name"] = name;
+  entry.asset["status"] = "failed";
+  entry.asset["message"] = failure["message"];
+  entry.asset["job"] = failure.value("inputs", json::object()).value("job", json(nullptr));
+  entry.asset["failure"] = name + "/" + kFailureFile;
+  entry.library = failure.value("inputs", json::object()).value("library", json(nullptr));
+  entry.tile = {name, fs::path(), "failed"};
+  return entry;
+}
+
+// The folder's entry: a finished asset (manifest.json), a failed job (failure.json), damaged (either there
+// but unreadable, or of the wrong shape), or nothing (not an asset folder, or a bake not finished).
+std::optional<IndexEntry> readFolder(const fs::path& out_dir, const std::string& name,
+                                     const std::map<std::string, std::string>& run_status) {
+  const fs::path dir = out_dir / name;
+  std::string manifest_problem, failure_problem;
+  const auto manifest = readJson(dir / kManifestFile, &manifest_problem);
+  const auto failure = manifest ? std::nullopt : readJson(dir / kFailureFile, &failure_problem);
+  const bool manifest_ok = manifest && manifest->is_object() && manifest->contains("inputs") &&
+                           (*manifest)["inputs"].is_object() && manifest->value("outputs", json::array()).is_array();
+  const bool failure_ok = failure && failure->is_object() && failure->contains("message");
+  if (!manifest_ok && !failure_ok && (fs::exists(dir / kManifestFile) || fs::exists(dir / kFailureFile))) {
+    // There, but unreadable: cut off or garbled. Never left out silently.
+    const char* file = fs::exists(dir / kManifestFile) ? kManifestFile : kFailureFile;
+    const std::string& why = fs::exists(dir / kManifestFile) ? manifest_problem : failure_problem;
+    return damaged(name,
+                   std::string(file) + " cannot be read" + (why.empty() ? " (not what a bake writes)" : ": " + why));
+  }
+  try {
+    if (manifest_ok) return finishedAsset(dir, name, *manifest, run_status);
+    if (failure_ok) return failedJob(name, *failure);
+    return std::nullopt;
+  } catch (const json::exception& e) {  // a value of another type
+    return damaged(name, e.what());
+  }
+}
+
+}  // namespace
+
+IndexCounts writeLibraryIndex(const fs::path& out_dir, const std::map<std::string, std::string>& run_status,
+                              const ordered_json& timings) {
   IndexCounts counts;
   ordered_json assets = ordered_json::array();
   std::set<std::pair<std::string, std::string>> libraries;
   std::vector<ContactSheetItem> sheet;
-  for (const auto& name : names) {
-    const fs::path dir = out_dir / name;
-    ordered_json asset;
-    asset["name"] = name;
-    json library;
-    std::string manifest_problem, failure_problem;
-    const auto manifest = readJson(dir / kManifestFile, &manifest_problem);
-    const auto failure = manifest ? std::nullopt : readJson(dir / kFailureFile, &failure_problem);
-    const bool manifest_ok = manifest && manifest->is_object() && manifest->contains("inputs") &&
-                             (*manifest)["inputs"].is_object() && manifest->value("outputs", json::array()).is_array();
-    const bool failure_ok = failure && failure->is_object() && failure->contains("message");
-    if (!manifest_ok && !failure_ok && (fs::exists(dir / kManifestFile) || fs::exists(dir / kFailureFile))) {
-      // There, but unreadable: cut off or garbled. Never left out silently.
-      const char* file = fs::exists(dir / kManifestFile) ? kManifestFile : kFailureFile;
-      const std::string& why = fs::exists(dir / kManifestFile) ? manifest_problem : failure_problem;
-      const std::string message =
-          std::string(file) + " cannot be read" + (why.empty() ? " (not what a bake writes)" : ": " + why);
-      spdlog::warn("{}: damaged: {}; bake it again", name, message);
-      counts.damaged += 1;
-      asset["status"] = "damaged";
-      asset["message"] = message;
-      sheet.push_back({name, fs::path(), "damaged"});
-      assets.push_back(asset);
-      continue;
+  for (const auto& name : folderNames(out_dir)) {
+    std::optional<IndexEntry> entry = readFolder(out_dir, name, run_status);
+    if (!entry) continue;
+    switch (entry->status) {
+      case IndexEntry::Status::Ok:
+        ++counts.ok;
+        break;
+      case IndexEntry::Status::SkippedResumed:
+        ++counts.skipped_resumed;
+        break;
+      case IndexEntry::Status::Failed:
+        ++counts.failed;
+        break;
+      case IndexEntry::Status::Damaged:
+        ++counts.damaged;
+        break;
     }
-    // A manifest or failure record of the wrong shape (a value of another type) is damaged too.
-    try {
-      if (manifest_ok) {
-        const json& inputs = (*manifest)["inputs"];
-        const auto run = run_status.find(name);
-        const std::string status = run != run_status.end() ? run->second : "ok";
-        (status == "skipped-resumed" ? counts.skipped_resumed : counts.ok) += 1;
-        bool rendered = false, described = false;
-        for (const auto& output : manifest->value("outputs", json::array())) {
-          rendered = rendered || (output.is_object() && output.value("path", "") == "render.png");
-          described = described || (output.is_object() && output.value("path", "") == kAssetFile);
-        }
-        asset["status"] = status;
-        asset["job"] = inputs.value("job", json(nullptr));
-        asset["input_hash"] = inputs.value("input_hash", "");
-        asset["manifest"] = name + "/" + kManifestFile;
-        asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
-        asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
-        library = inputs.value("library", json(nullptr));
-        sheet.push_back({name, rendered ? dir / "render.png" : fs::path(), "no render"});
-      } else if (failure_ok) {
-        counts.failed += 1;
-        asset["status"] = "failed";
-        asset["message"] = (*failure)["message"];
-        asset["job"] = failure->value("inputs", json::object()).value("job", json(nullptr));
-        asset["failure"] = name + "/" + kFailureFile;
-        library = failure->value("inputs", json::object()).value("library", json(nullptr));
-        sheet.push_back({name, fs::path(), "failed"});
-      } else {
-        continue;  // not an asset folder, or a bake that has not finished
-      }
-    } catch (const json::exception& e) {
-      spdlog::warn("{}: damaged: {}; bake it again", name, e.what());
-      counts.damaged += 1;
-      asset = {{"name", name}, {"status", "damaged"}, {"message", e.what()}};
-      library = nullptr;
-      sheet.push_back({name, fs::path(), "damaged"});
-    }
+    const json& library = entry->library;
     if (library.is_object() && library.value("file", json()).is_string() && library.value("sha256", json()).is_string())
       libraries.emplace(library.value("file", ""), library.value("sha256", ""));
-    assets.push_back(asset);
+    assets.push_back(std::move(entry->asset));
+    sheet.push_back(std::move(entry->tile));
   }
 
   // The index is written even when the sheet cannot be (a missing font, a full disk); the error follows it.

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/sha256.h"
+#include "pipeline/asset_folder.h"
 #include "pipeline/manifest.h"
 
 namespace rockbake {
@@ -62,6 +63,10 @@ RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
     throw InputError({stats_file.string()}, "preset", std::string("unreadable: ") + e.what(), "bake the asset again");
   }
   request.threads = options.threads;
+  // A bake of the same asset (which would exchange the folder under the renders) waits for this one.
+  fs::path asset = fs::absolute(dir).lexically_normal();
+  if (asset.filename().empty()) asset = asset.parent_path();  // "out/goblin/"
+  const AssetLock lock(asset);
   const AssetFolderSnapshot before = snapshotAssetFolder(dir);
   RenderOutputs out = rerenderAsset(request);
   updateManifestOutputs(before, options.template_name.empty() ? request.params.template_name : options.template_name);

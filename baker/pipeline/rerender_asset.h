@@ -18,7 +18,8 @@ struct RerenderOptions {
 };
 
 // Throws InputError when the folder is not a rendered asset (no stats.json or
-// rock_mesh.inc) or its stats.json does not parse.
+// rock_mesh.inc), its stats.json does not parse, or another live process
+// holds the asset's lock (pipeline/asset_folder.h).
 RenderOutputs rerenderAssetFolder(const RerenderOptions& options);
 
 }  // namespace rockbake

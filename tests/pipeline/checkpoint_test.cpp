@@ -2,8 +2,11 @@
 // bake equals the uninterrupted one byte for byte; an edit at the checkpoint
 // equals the same keyframe baked from the start; grid, shape, seed and
 // resolution cannot change; a truncated, corrupt or foreign file is a clear error,
-// and so is one whose checksum holds but whose header does not fit its arrays.
+// and so is one whose checksum holds but whose header does not fit its arrays;
+// a file of gigabytes is refused from its first bytes, a FIFO or device at once.
 #include <gtest/gtest.h>
+
+#include <sys/stat.h>
 
 #include <cstring>
 #include <filesystem>
@@ -16,6 +19,7 @@
 #include "core/error.h"
 #include "core/sha256.h"
 #include "pipeline/checkpoint.h"
+#include "sim/checkpoint_format.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -239,6 +243,68 @@ TEST(Checkpoint, AValidChecksumOverAHeaderThatDoesNotFitItsArraysIsRefused) {
   EXPECT_FALSE(fs::exists(dir.path() / "c"));
   // The unedited bytes, put together the same way, still read.
   EXPECT_NO_THROW(parseCheckpoint(joined(whole, parts.header.dump(), parts.arrays), "whole.rbk"));
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SKIP_UNDER_ASAN() GTEST_SKIP() << "AddressSanitizer reserves more address space than ulimit -v allows"
+#else
+#define SKIP_UNDER_ASAN() (void)0
+#endif
+
+// A 2 GiB sparse file was read whole (2.1 GB of memory) before its magic bytes were looked at. Under
+// 600 MiB of address space, reading it whole is an out-of-memory exit 1; refused from its first bytes,
+// it is exit 2. So is a real checkpoint's header followed by far more bytes than its grid can hold.
+TEST(Checkpoint, AHugeFileIsRefusedFromItsFirstBytes) {
+  SKIP_UNDER_ASAN();
+  TempDir dir;
+  const std::string whole = bakeOneCheckpoint(dir);
+  ASSERT_FALSE(whole.empty());
+  const std::uintmax_t two_gib = std::uintmax_t(2) << 30;
+  const auto resumeUnderLimit = [&](const fs::path& file) {
+    return test::runRockbakeUnder("ulimit -v 614400; ", {"resume", file.string(), "-o", (dir.path() / "c").string()});
+  };
+  const fs::path foreign = dir.path() / "sparse.rbk";
+  test::writeText(foreign, "");
+  fs::resize_file(foreign, two_gib);
+  const auto refused = resumeUnderLimit(foreign);
+  EXPECT_EQ(refused.exit_status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("sparse.rbk: not a rockbake checkpoint"), std::string::npos) << refused.output;
+
+  const Parts parts = split(whole);
+  const fs::path padded = dir.path() / "padded.rbk";
+  test::writeText(padded, whole.substr(0, 20 + parts.header.dump().size()));
+  fs::resize_file(padded, two_gib);
+  const auto too_big = resumeUnderLimit(padded);
+  EXPECT_EQ(too_big.exit_status, 2) << too_big.output;
+  EXPECT_NE(too_big.output.find("padded.rbk: the checkpoint is corrupt (the file is 2147483648 bytes; a checkpoint "
+                                "of its grid holds at most"),
+            std::string::npos)
+      << too_big.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "c"));
+  // The bound is not below any real checkpoint: the whole one, and every shorter cut of its header, are
+  // judged by their content as before.
+  test::writeText(dir.path() / "whole.rbk", whole);
+  EXPECT_EQ(resumeUnderLimit(dir.path() / "whole.rbk").exit_status, 0);
+  for (const std::size_t cut : {std::size_t(4), std::size_t(19), std::size_t(20) + 10, whole.size() - 1}) {
+    test::writeText(dir.path() / "cut.rbk", whole.substr(0, cut));
+    const auto result = runRockbake({"resume", (dir.path() / "cut.rbk").string(), "-o", (dir.path() / "c").string()});
+    EXPECT_EQ(result.exit_status, 2) << cut << ": " << result.output;
+    EXPECT_NE(result.output.find("cut.rbk: "), std::string::npos) << result.output;
+  }
+}
+
+// A FIFO with no writer would block the read for ever, /dev/zero never ends: both refused at once, unread.
+TEST(Checkpoint, AFifoOrADeviceIsRefusedAtOnce) {
+  TempDir dir;
+  const fs::path fifo = dir.path() / "fifo.rbk";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  for (const fs::path& file : {fifo, fs::path("/dev/zero")}) {
+    const auto result =
+        test::runRockbakeUnder("timeout 20 ", {"resume", file.string(), "-o", (dir.path() / "c").string()});
+    EXPECT_EQ(result.exit_status, 2) << file << ": " << result.output;
+    EXPECT_NE(result.output.find(file.string() + ": is not a regular file"), std::string::npos) << result.output;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "c"));
 }
 
 }  // namespace

@@ -171,11 +171,16 @@ for i in 0 1 2 3; do
 done
 
 # A lost shard: as if task 2's node died while baking its job (column-soft,
-# job 2 of 4), the folder has no manifest and a missing render. Re-running just
-# that task bakes it again and leaves the other shards' assets alone.
+# job 2 of 4) for the first time, the asset is not in place; what is left is
+# the bake's hidden staging folder, without a manifest and a render, and its
+# lock file, whose holder is gone. Re-running just that task bakes it again,
+# clears what the lost bake left, and leaves the other shards' assets alone.
 stamps() { stat -c '%n %i %Y' "$work"/cluster-out/{cube-s3,cube-s4,column-hard}/manifest.json; }
 before=$(stamps)
-rm "$work/cluster-out/column-soft/manifest.json" "$work/cluster-out/column-soft/render.png"
+lost=$work/cluster-out/.column-soft.baking-999999
+mv "$work/cluster-out/column-soft" "$lost"
+rm "$lost/manifest.json" "$lost/render.png"
+echo "pid 999999 on host lost-node, since 2026-01-01T00:00:00Z" >"$work/cluster-out/.column-soft.lock"
 ids=$("$submit" --parsable --shards 4 --tasks 2 --cpus-per-task 1 "$work/library/library.yaml" "$work/cluster-out") \
   || die "the installed submit.sh could not submit the re-run of task 2"
 read -r rerun_id rerun_index_id <<<"$ids"
@@ -184,6 +189,7 @@ expect_completed "$rerun_id" 1 "re-run of task 2"
 expect_completed "$rerun_index_id" 1 "index job after the re-run"
 rerun_log=$logs/shard-${rerun_id}_2.out
 if grep -q -- "(shard 2/4 of 4)" "$rerun_log" && [ -f "$work/cluster-out/column-soft/manifest.json" ] \
+  && [ ! -e "$lost" ] && [ ! -e "$work/cluster-out/.column-soft.lock" ] \
   && [ -f "$work/cluster-out/column-soft/render.png" ]; then
   pass "the re-run task baked shard 2/4 again: column-soft"
 else
