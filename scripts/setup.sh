@@ -8,7 +8,7 @@ packages=(
   libtbb-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   libopenvdb-dev libboost-iostreams-dev libpng-dev libssl-dev libfreetype-dev fonts-dejavu-core
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
-  libtinygltf-dev libmeshoptimizer-dev
+  libtinygltf-dev libmeshoptimizer-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
