@@ -11,6 +11,9 @@ packages=(
   libtinygltf-dev libmeshoptimizer-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
+  # Blender's glTF importer reads collision.glb in tests/collision (Blender 3.4; its importer
+  # needs numpy).
+  blender python3-numpy
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
   # ASan/UBSan runtimes; llvm-14 brings llvm-symbolizer for readable reports.
   clang-14 libclang-rt-14-dev llvm-14

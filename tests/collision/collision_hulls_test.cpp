@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 
 #include "collision/collision_hulls.h"
+#include "collision/hull_checks.h"
 #include "collision/hull_coverage.h"
 #include "inputs/resolve_shape.h"
 #include "preset/load_preset.h"
@@ -22,6 +23,12 @@
 
 namespace rockbake {
 namespace {
+
+using test::cross;
+using test::dot;
+using test::expectClosedConvexOutward;
+using test::sub;
+using test::weatheredGoblin;
 
 // An all-air grid on the ground, h = 0.25, with `solid` deciding which cells are rock.
 VoxelRock blockRock(int nx, int ny, int nz, const std::function<bool(int, int, int)>& solid) {
@@ -38,54 +45,6 @@ VoxelRock blockRock(int nx, int ny, int nz, const std::function<bool(int, int, i
         if (solid(x, y, z)) rock.material[g.index(x, y, z)] = Material::Rock;
   resetRockValues(rock);
   return rock;
-}
-
-// The weathered default preset at a test resolution, colluvium and all.
-const VoxelRock& weatheredGoblin() {
-  static const VoxelRock rock = [] {
-    const Preset p = loadPreset(test::sourceDir() / "presets" / "goblin.yaml", {{}, std::nullopt, 40});
-    return weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
-  }();
-  return rock;
-}
-
-Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-// Every edge used once each way; every vertex on the inner side of every
-// face (so the hull is convex and its faces point out); the volume its
-// triangles enclose is positive and the one it reports.
-void expectClosedConvexOutward(const ConvexHull& hull, double h, const std::string& what) {
-  ASSERT_GE(hull.positions.size(), 4u) << what;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const auto& t : hull.triangles)
-    for (int i = 0; i < 3; ++i) ++edges[{t[i], t[(i + 1) % 3]}];
-  for (const auto& [e, n] : edges) {
-    EXPECT_EQ(n, 1) << what << ": edge " << e.first << "-" << e.second << " used " << n << " times one way";
-    EXPECT_EQ(edges.count({e.second, e.first}), 1u)
-        << what << ": edge " << e.first << "-" << e.second << " has no twin";
-  }
-  // Euler: a closed sphere-like surface.
-  EXPECT_EQ(hull.positions.size() + hull.triangles.size() - edges.size() / 2, 2u) << what;
-  double volume = 0;
-  for (const auto& t : hull.triangles) {
-    const Vec3d &a = hull.positions[t[0]], &b = hull.positions[t[1]], &c = hull.positions[t[2]];
-    const Vec3d n = cross(sub(b, a), sub(c, a));
-    const double area2 = std::sqrt(dot(n, n));
-    ASSERT_GT(area2, 0) << what << ": a zero-area face";
-    for (const Vec3d& v : hull.positions)
-      ASSERT_LE(dot(n, sub(v, a)) / area2, 1e-9 * h) << what << ": a vertex outside a face's plane";
-    volume += dot(a, cross(b, c)) / 6;
-  }
-  EXPECT_GT(volume, 0) << what;
-  EXPECT_NEAR(volume, hull.volume, 1e-9 * std::abs(volume)) << what;
 }
 
 // Every voxel of `material`, all eight corners, inside one hull (the hull of
@@ -143,7 +102,7 @@ TEST(CollisionHulls, BoxIsOneHullOfEightVertices) {
     EXPECT_TRUE(p[1] == -2.0 + 3 * 0.25 || p[1] == -2.0 + 9 * 0.25) << p[1];
     EXPECT_TRUE(p[2] == 0.0 || p[2] == 4 * 0.25) << p[2];
   }
-  expectClosedConvexOutward(box, 0.25, "box");
+  expectClosedConvexOutward(box, 1e-12, "box");
   const HullCoverage c = measureCoverage(rock, Material::Rock, hulls);
   EXPECT_EQ(c.voxels_inside, c.voxels);
   EXPECT_EQ(c.air_inside, 0u);
@@ -156,7 +115,7 @@ TEST(CollisionHulls, LShapedBlockIsTwoHullsThatClaimAlmostNoAir) {
   const VoxelRock rock = blockRock(44, 44, 24, wall);
   const std::vector<ConvexHull> hulls = hullVoxels(rock, Material::Rock, {});
   ASSERT_EQ(hulls.size(), 2u);
-  for (const ConvexHull& h : hulls) expectClosedConvexOutward(h, 0.25, "L");
+  for (const ConvexHull& h : hulls) expectClosedConvexOutward(h, 1e-12, "L");
   const std::size_t voxels = 40 * 13 * 20 + 27 * 13 * 20;
   EXPECT_EQ(hulls[0].voxels + hulls[1].voxels, voxels);
   const HullCoverage c = measureCoverage(rock, Material::Rock, hulls);
@@ -181,7 +140,7 @@ TEST(CollisionHulls, WeatheredRockAndColluvium) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const ConvexHull& h = (*list)[i];
       EXPECT_LE(h.positions.size(), std::size_t(params.max_vertices)) << what;
-      expectClosedConvexOutward(h, rock.layout.h, what + " hull " + std::to_string(i));
+      expectClosedConvexOutward(h, 1e-9 * rock.layout.h, what + " hull " + std::to_string(i));
       if (i > 0) EXPECT_GE((*list)[i - 1].volume, h.volume) << "largest first";
     }
     const HullCoverage c = measureCoverage(rock, material, *list);
@@ -210,7 +169,7 @@ TEST(CollisionHulls, TightCapsHold) {
     EXPECT_LE(hulls.size(), std::size_t(params.max_hulls));
     for (const ConvexHull& h : hulls) {
       EXPECT_LE(h.positions.size(), std::size_t(params.max_vertices));
-      expectClosedConvexOutward(h, rock.layout.h, "capped");
+      expectClosedConvexOutward(h, 1e-9 * rock.layout.h, "capped");
     }
     expectEveryVoxelInside(rock, Material::Rock, hulls);
   }
@@ -224,7 +183,7 @@ TEST(CollisionHulls, LooseVoxelsEverywhere) {
   EXPECT_LE(hulls.size(), 6u);
   for (const ConvexHull& h : hulls) {
     EXPECT_LE(h.positions.size(), 16u);
-    expectClosedConvexOutward(h, rock.layout.h, "specks");
+    expectClosedConvexOutward(h, 1e-9 * rock.layout.h, "specks");
   }
   expectEveryVoxelInside(rock, Material::Rock, hulls);
 }
