@@ -43,6 +43,10 @@ set_target_properties(OpenSubdiv::osdCPU PROPERTIES
 find_package(TinyGLTF REQUIRED)
 find_package(meshoptimizer REQUIRED)
 
+# Qhull (docs/collision.md): the C++ interface, Qhull::qhullcpp, sits on the
+# reentrant C library, Qhull::qhull_r, which has to be linked as well.
+find_package(Qhull REQUIRED)
+
 if(ROCKBAKE_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

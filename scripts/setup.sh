@@ -8,11 +8,12 @@ packages=(
   libtbb-dev libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   libopenvdb-dev libboost-iostreams-dev libpng-dev libssl-dev libfreetype-dev fonts-dejavu-core
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
-  libtinygltf-dev libmeshoptimizer-dev
+  libtinygltf-dev libmeshoptimizer-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
-  # The .deb (cpack -G DEB): dpkg-shlibdeps (dpkg-dev) finds its dependencies, and needs `file`.
-  dpkg-dev file
+  # Blender's glTF importer reads collision.glb in tests/collision (Blender 3.4; its importer
+  # needs numpy).
+  blender python3-numpy
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the
   # ASan/UBSan runtimes; llvm-14 brings llvm-symbolizer for readable reports.
   clang-14 libclang-rt-14-dev llvm-14

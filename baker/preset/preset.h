@@ -211,6 +211,22 @@ struct RenderParams {
   int turntable_frames = 0;  // 0: no turntable
 };
 
+// Collision hulls decomposed from the voxels (docs/collision.md). Not read
+// from presets yet: the collision stage takes it as given.
+enum class HullNaming {
+  Unreal,  // UCX_rock_00, UCX_rock_01, …
+  Godot,   // rock_00-convcolonly, …
+};
+struct CollisionParams {
+  static constexpr int kMaxHulls = 100;     // two-digit node names
+  static constexpr int kMinVertices = 8;    // the reduction starts from the bounding box
+  static constexpr int kMaxVertices = 255;  // PhysX's (Unreal's, Unity's) limit per convex mesh
+  int max_hulls = 16;                       // hulls per material, 1..kMaxHulls
+  int max_vertices = 64;                    // vertices per hull, kMinVertices..kMaxVertices
+  HullNaming naming = HullNaming::Unreal;   // node names in collision.glb
+  bool colluvium = false;                   // also hull the colluvium, separately
+};
+
 // What the simulation reads (docs/model.md): everything that decides the voxels.
 struct SimParams {
   std::uint64_t seed = 0;  // every random choice derives from (seed, purpose, ...)

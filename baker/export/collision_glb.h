@@ -1,0 +1,28 @@
+// collision.glb (docs/collision.md): binary glTF 2.0 via tinygltf, written
+// atomically, one mesh and one node per convex hull (collision/collision_hulls.h):
+// POSITION (with its bounds) and triangle indices, nothing else. The asset's
+// frame, as in every GLB (glb_file.h): positions about the pivot, y up, the
+// point (x, y, z) stored as (x, z, −y), in world units. Each hull stays closed,
+// convex and counter-clockwise seen from outside (the change of axes is a rotation).
+// Nodes are named for the engine that reads them (collisionNodeName).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "collision/collision_hulls.h"
+#include "preset/preset.h"
+
+namespace rockbake {
+
+// The node (and mesh) name of `surface`'s ("rock", "colluvium") hull `index`
+// (0..99): Unreal "UCX_rock_00", Godot "rock_00-convcolonly".
+std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index);
+
+// `pivot`: the world position of the asset's origin (footprintPivot). The rock's
+// hulls come first, then the colluvium's. Throws std::runtime_error on failure.
+void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNaming naming,
+                       const std::filesystem::path& file);
+
+}  // namespace rockbake
