@@ -9,17 +9,24 @@
 //
 // Adding a key: add its member to the struct in preset/preset.h (with its
 // default), then one row to the map that holds it here, and regenerate the
-// reference (`cmake --build build --target preset-reference`). A new block
-// (say `texture: {size, padding}`) is a struct in preset.h, a member of Preset,
-// a `textureSpec()` here listing its keys, and one row in presetSpec():
+// reference (`cmake --build build --target preset-reference`). For example
+// render.turntable.fps is `int turntable_fps = 24;` in RenderParams and
+//   k("fps", &RenderParams::turntable_fps, integer<int>(1, 120), "frames per second").unit("1/s"),
+// in turntableSpec(). A new block (say `texture: {size, padding}`) is a struct
+// in preset.h, a member of Preset, a `textureSpec()` here listing its keys, and
+// one row in presetSpec():
 //   k("texture", &Preset::texture, mapValue<textureSpec>(), "texture maps")
-// An optional block is a std::optional member (written only when given); a
-// list of blocks uses listOfMaps<spec>(). New enum values need a name in the
-// enum's table below; new kinds of an existing one-of map need one row there.
+// A list of blocks uses listOfMaps<spec>(); a rule between keys is a named
+// check in preset/schema_rules.h, given to the row with .check(). New enum
+// values need a name in the enum's table below; a new kind of a one-of map
+// (a shape, a bubble) is one row there, and `extends` merges it as one.
+//
+// Every key is in the resolved preset's JSON, and so in each asset's input
+// hash: a new key with a default changes every preset's hash (a library re-run
+// then bakes everything again). A std::optional member is written only when
+// given (shape.variation, durability.strata), so presets without it keep
+// their hash.
 #include "preset/schema.h"
-
-#include <set>
-#include <sstream>
 
 #include "preset/schema_rules.h"
 #include "preset/schema_spec.h"
