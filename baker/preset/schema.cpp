@@ -77,7 +77,7 @@ constexpr const char* kDegrees = "degrees";
 const MapSpec<BoxShape>& boxSpec() {
   static const Keys<BoxShape> k;
   static const MapSpec<BoxShape> spec{{
-      k("size", &BoxShape::size, lengths3(), "the box's size along x, y, z").always().unit(kWorld),
+      k("size", &BoxShape::size, lengths3(), "an axis-aligned box").always().unit(kWorld),
   }};
   return spec;
 }
@@ -85,7 +85,7 @@ const MapSpec<BoxShape>& boxSpec() {
 const MapSpec<CylinderShape>& cylinderSpec() {
   static const Keys<CylinderShape> k;
   static const MapSpec<CylinderShape> spec{{
-      k("radius", &CylinderShape::radius, length(), "radius of the upright cylinder").always().unit(kWorld),
+      k("radius", &CylinderShape::radius, length(), "a vertical cylinder's radius").always().unit(kWorld),
       k("height", &CylinderShape::height, length(), "its height").always().unit(kWorld),
   }};
   return spec;
@@ -94,7 +94,7 @@ const MapSpec<CylinderShape>& cylinderSpec() {
 const MapSpec<SphereShape>& sphereSpec() {
   static const Keys<SphereShape> k;
   static const MapSpec<SphereShape> spec{{
-      k("radius", &SphereShape::radius, length(), "the sphere's radius").always().unit(kWorld),
+      k("radius", &SphereShape::radius, length(), "a sphere resting on the base").always().unit(kWorld),
   }};
   return spec;
 }
@@ -102,13 +102,14 @@ const MapSpec<SphereShape>& sphereSpec() {
 const MapSpec<InsideCornerShape>& insideCornerSpec() {
   static const Keys<InsideCornerShape> k;
   static const MapSpec<InsideCornerShape> spec{{
-      k("size", &InsideCornerShape::size, lengths3(), "footprint x, y and height of the L-shaped block")
+      k("size", &InsideCornerShape::size, lengths3(), "an L-shaped block's footprint x, y and height")
           .always()
           .unit(kWorld),
       k("wall", &InsideCornerShape::wall, length(),
-        "thickness of its two walls, thinner than the footprint; the corner opens towards +x +y")
+        "the thickness of its two walls; the re-entrant corner opens towards +x +y")
           .always()
           .unit(kWorld)
+          .range("< `min(size[0], size[1])`")
           .check(wallThinnerThanFootprint),
   }};
   return spec;
@@ -117,10 +118,11 @@ const MapSpec<InsideCornerShape>& insideCornerSpec() {
 const MapSpec<ImageShape>& imageSpec() {
   static const Keys<ImageShape> k;
   static const MapSpec<ImageShape> spec{{
-      k("path", &ImageShape::path, existingFile("image"), "a PNG: its bright pixels (>= 128) are rock").always(),
+      k("path", &ImageShape::path, existingFile("image", "a PNG"), "a black-and-white image: white (≥ 128) is rock")
+          .always(),
       k("mode", &ImageShape::mode, choice<ImageMode>(),
-        "extrude: the image is the footprint; revolve: it is a profile turned about its left column"),
-      k("height", &ImageShape::height, length(), "extrude: the extrusion's height; revolve: the profile's height")
+        "the image as a footprint, or as a profile revolved about z (left column = axis)"),
+      k("height", &ImageShape::height, length(), "extrusion height, or the height the profile's rows span")
           .always()
           .unit(kWorld),
   }};
@@ -130,8 +132,11 @@ const MapSpec<ImageShape>& imageSpec() {
 const MapSpec<MeshShape>& meshShapeSpec() {
   static const Keys<MeshShape> k;
   static const MapSpec<MeshShape> spec{{
-      k("path", &MeshShape::path, existingFile("mesh"), "a closed OBJ, PLY or STL blockout, voxelized").always(),
-      k("scale", &MeshShape::scale, numberIn(0.0, kMaxWorldLength, true), "world units per file unit"),
+      k("path", &MeshShape::path, existingFile("mesh", "a closed OBJ, PLY or STL, ≤ 1 GiB"),
+        "an artist's blockout, voxelised")
+          .always(),
+      k("scale", &MeshShape::scale, numberIn(0.0, kMaxWorldLength, true), "scales the blockout's coordinates")
+          .unit("world units per file unit"),
   }};
   return spec;
 }
@@ -140,11 +145,11 @@ const MapSpec<ShapeVariation>& variationSpec() {
   static const Keys<ShapeVariation> k;
   static const MapSpec<ShapeVariation> spec{{
       k("amplitude", &ShapeVariation::amplitude, numberIn(0.0, 1e6),
-        "how far seeded fractal noise moves the boundary, at most (typically a third of it); 0 keeps the shape")
+        "how far seeded noise may move the boundary; 0 keeps the shape")
           .required("a variation needs 'amplitude' (world units; 0 keeps the shape)")
           .unit(kWorld),
-      k("period", &ShapeVariation::period, positive(), "the noise's period").unit(kWorld),
-      k("octaves", &ShapeVariation::octaves, integer<int>(1, 8), "octaves of the noise"),
+      k("period", &ShapeVariation::period, positive(), "the noise's feature size").unit(kWorld),
+      k("octaves", &ShapeVariation::octaves, integer<int>(1, 8), "octaves of fractal noise"),
   }};
   return spec;
 }
@@ -154,23 +159,22 @@ const MapSpec<ShapeParams>& shapeSpec() {
   static const MapSpec<ShapeParams> spec{
       {
           k.variant<BoxShape>("box", &ShapeParams::kind, mapValue<boxSpec>(), "a box"),
-          k.variant<CylinderShape>("cylinder", &ShapeParams::kind, mapValue<cylinderSpec>(), "an upright cylinder"),
+          k.variant<CylinderShape>("cylinder", &ShapeParams::kind, mapValue<cylinderSpec>(), "a cylinder"),
           k.variant<SphereShape>("sphere", &ShapeParams::kind, mapValue<sphereSpec>(), "a sphere"),
           k.variant<InsideCornerShape>("inside_corner", &ShapeParams::kind, mapValue<insideCornerSpec>(),
-                                       "an L-shaped block: two walls meeting at a right angle"),
-          k.variant<ImageShape>("image", &ShapeParams::kind, mapValue<imageSpec>(),
-                                "a PNG footprint extruded, or a profile revolved"),
-          k.variant<MeshShape>("mesh", &ShapeParams::kind, mapValue<meshShapeSpec>(), "an artist's blockout"),
-          k("center", &ShapeParams::center, position(),
-            "where the shape's centre (x, y) and base (z) go; default: centred in x, y, on the ground")
+                                       "an L-shaped block"),
+          k.variant<ImageShape>("image", &ShapeParams::kind, mapValue<imageSpec>(), "an image"),
+          k.variant<MeshShape>("mesh", &ShapeParams::kind, mapValue<meshShapeSpec>(), "a blockout"),
+          k("center", &ShapeParams::center, position(), "where the shape's centre (x, y) and base (z) go")
               .nullWhenAbsent()
-              .unit(kWorld),
-          k("variation", &ShapeParams::variation, mapValue<variationSpec>(),
-            "seeded noise on the boundary: each seed starts from a different rock of the same kind"),
+              .unit(kWorld)
+              .defaultIs("centred in x, y, on the ground"),
+          k("variation", &ShapeParams::variation, mapValue<variationSpec>(), "seeded noise on the boundary"),
       },
       {kinds({"box", "cylinder", "sphere", "inside_corner", "image", "mesh"})},
-      "Exactly one of `box`, `cylinder`, `sphere`, `inside_corner`, `image`, `mesh`: the shape's kind. "
-      "Shapes are placed by their bounding box and fill the voxels whose centre is inside them."};
+      "Exactly one kind, and beside it optionally `center` and `variation` ([model.md §8](model.md)). Images "
+      "are at most 256 M pixels, in any PNG format (alpha composited over black). A blockout must be closed: "
+      "every edge shared by exactly two faces of opposite orientation."};
   return spec;
 }
 
@@ -179,10 +183,10 @@ const MapSpec<ShapeParams>& shapeSpec() {
 const MapSpec<NoiseParams>& noiseSpec() {
   static const Keys<NoiseParams> k;
   static const MapSpec<NoiseParams> spec{{
-      k("amplitude", &NoiseParams::amplitude, numberIn(0.0, 1e6), "the noise's amplitude"),
-      k("period", &NoiseParams::period, length(), "its period").unit(kWorld),
-      k("octaves", &NoiseParams::octaves, integer<int>(1, 8),
-        "octaves, each at double the frequency and half the amplitude"),
+      k("amplitude", &NoiseParams::amplitude, numberIn(0.0, 1e6), "noise amplitude added to the graph")
+          .unit("durability"),
+      k("period", &NoiseParams::period, length(), "the noise's feature size").unit(kWorld),
+      k("octaves", &NoiseParams::octaves, integer<int>(1, 8), "octaves"),
   }};
   return spec;
 }
@@ -191,10 +195,12 @@ const MapSpec<DurabilityGraph>& graphSpec() {
   static const Keys<DurabilityGraph> k;
   static const MapSpec<DurabilityGraph> spec{{
       k("points", &DurabilityGraph::points, altitudePoints(),
-        "the durability graph: durability by altitude (0 ground .. 1 top of grid.size), constant beyond its ends")
+        "the durability graph: linear between points, constant beyond the ends")
+          .unit("altitude, durability")
           .keyframed(KeyframePart::Graph),
-      k("noise", &DurabilityGraph::noise, listOfNullable(mapValue<noiseSpec>(), "list of noise maps or null"),
-        "Perlin noise per segment of the graph: one entry per segment (null: none), or [] for none at all")
+      k("noise", &DurabilityGraph::noise, listOfNullable(mapValue<noiseSpec>()),
+        "Perlin noise per segment; `null` for a segment without")
+          .range("one entry per segment (`points` − 1), or `[]`")
           .checkFirst(oneNoisePerSegment)
           .keyframed(KeyframePart::Graph)
           .inheritedWith("points"),
@@ -206,10 +212,10 @@ const MapSpec<StrataParams>& warpSpec() {
   static const Keys<StrataParams> k;
   static const MapSpec<StrataParams> spec{{
       k("amplitude", &StrataParams::warp_amplitude, numberIn(0.0, 1e6),
-        "how far the beds are folded along their normal")
+        "how far seeded noise folds the beds along their normal")
           .required("a warp needs 'amplitude' (world units)")
           .unit(kWorld),
-      k("period", &StrataParams::warp_period, positive(), "the fold's period over the bedding plane")
+      k("period", &StrataParams::warp_period, positive(), "the folds' size along the beds")
           .required("a warp needs 'period' (world units)")
           .unit(kWorld),
   }};
@@ -219,9 +225,10 @@ const MapSpec<StrataParams>& warpSpec() {
 const MapSpec<StrataParams>& strataSpec() {
   static const Keys<StrataParams> k;
   static const MapSpec<StrataParams> spec{{
-      k("dip", &StrataParams::dip, numberIn(0.0, 90.0), "the beds' dip towards the strike's right; 0: flat beds")
+      k("dip", &StrataParams::dip, numberIn(0.0, 90.0), "how steeply the beds dip; 0 is the paper's flat beds")
           .unit(kDegrees),
-      k("strike", &StrataParams::strike, numberIn(-360.0, 360.0), "clockwise from +y, seen from above").unit(kDegrees),
+      k("strike", &StrataParams::strike, numberIn(-360.0, 360.0), "the beds' strike; they dip towards its right")
+          .unit("degrees clockwise from +y"),
       k("warp", self, mapValue<warpSpec>(), "folds in the beds"),
   }};
   return spec;
@@ -230,19 +237,21 @@ const MapSpec<StrataParams>& strataSpec() {
 const MapSpec<JointSet>& jointSpec() {
   static const Keys<JointSet> k;
   static const MapSpec<JointSet> spec{{
-      k("strike", &JointSet::strike, numberIn(-360.0, 360.0), "the planes' strike, clockwise from +y").unit(kDegrees),
-      k("dip", &JointSet::dip, numberIn(0.0, 90.0), "their dip").unit(kDegrees),
+      k("strike", &JointSet::strike, numberIn(-360.0, 360.0), "the set's strike").unit(kDegrees),
+      k("dip", &JointSet::dip, numberIn(0.0, 90.0), "the set's dip").unit(kDegrees),
       k("spacing", &JointSet::spacing, positive(), "distance between neighbouring planes")
           .required("a joint set needs 'spacing' (world units between its planes)")
           .unit(kWorld),
-      k("jitter", &JointSet::jitter, number(), "planes lie spacing ± jitter apart; 0 <= jitter < spacing")
+      k("jitter", &JointSet::jitter, number(), "planes are `spacing ± jitter` apart, placed by the seed")
           .unit(kWorld)
+          .range("[0, `spacing`)")
           .check(jitterBelowSpacing),
-      k("width", &JointSet::width, positive(), "durability changes within this of a plane; less than spacing")
+      k("width", &JointSet::width, positive(), "durability changes within `width` of a plane")
           .required("a joint set needs 'width' (world units either side of a plane)")
           .unit(kWorld)
+          .range("> 0 and < `spacing`")
           .check(widthBelowSpacing),
-      k("factor", &JointSet::factor, positive(), "durability multiplier near a plane")
+      k("factor", &JointSet::factor, positive(), "durability multiplier near a plane (below 1 weakens)")
           .required("a joint set needs 'factor' (the durability multiplier at a plane, > 0)"),
   }};
   return spec;
@@ -251,7 +260,7 @@ const MapSpec<JointSet>& jointSpec() {
 const MapSpec<RindParams>& rindSpec() {
   static const Keys<RindParams> k;
   static const MapSpec<RindParams> spec{{
-      k("depth", &RindParams::depth, positive(), "how deep below the initial surface the rind reaches")
+      k("depth", &RindParams::depth, positive(), "depth below the initial surface that is hardened")
           .required("a rind needs 'depth' (world units below the initial surface)")
           .unit(kWorld),
       k("factor", &RindParams::factor, positive(), "how many times as durable the rind is")
@@ -264,39 +273,45 @@ const MapSpec<BubbleBand>& bandSpec();
 const MapSpec<ResponseParams>& responseSpec();
 
 Value<std::vector<BubbleBand>> bandList() {
-  return listOfMaps<bandSpec>({"needs at least one band", true, lastBandReachesTheTop},
-                              "list of bands, bottom to top, the last with up_to: 1");
+  return listOfMaps<bandSpec>({"needs at least one band", true, lastBandReachesTheTop});
 }
 
 const MapSpec<DurabilityKeyframe>& keyframeSpec() {
   static const Keys<DurabilityKeyframe> k;
-  static const MapSpec<DurabilityKeyframe> spec{{
-      k.inlined<graphSpec>(&DurabilityKeyframe::graph, "points"),
-      k("at", &DurabilityKeyframe::at, numberIn(0.0, 1e9),
-        "the simulation time from which its parts replace those in effect; keyframes in time order")
-          .requiredHere("a keyframe needs 'at' (the simulation time it takes effect)")
-          .checkFirst(keyframeChangesSomething)
-          .checkFirst(noiseNeedsPoints)
-          .check(keyframesInTimeOrder)
-          .unit("units of time"),
-      k("bubbles", &DurabilityKeyframe::bubbles, bandList(), "a bubble graph that replaces the one in effect"),
-      k("response", &DurabilityKeyframe::response, mapValue<responseSpec>(),
-        "a response that replaces the one in effect"),
-  }};
+  static const MapSpec<DurabilityKeyframe> spec{
+      {
+          k.inlined<graphSpec>(&DurabilityKeyframe::graph, "points").see("durability"),
+          k("at", &DurabilityKeyframe::at, numberIn(0.0, 1e9), "the simulation time it takes effect")
+              .requiredHere("a keyframe needs 'at' (the simulation time it takes effect)")
+              .checkFirst(keyframeChangesSomething)
+              .checkFirst(noiseNeedsPoints)
+              .check(keyframesInTimeOrder)
+              .unit("time"),
+          k("bubbles", &DurabilityKeyframe::bubbles, bandList(), "the bubble graph it switches to").see("bubbles"),
+          k("response", &DurabilityKeyframe::response, mapValue<responseSpec>(), "the response it switches to")
+              .see("response"),
+      },
+      {},
+      "**Keyframes** (`durability.keyframes.[]`), each a map, in time order (equal times allowed), carry at least "
+      "one of `points` (with its own `noise`, none if absent: `noise` needs `points`), `bubbles` and `response`, "
+      "each of which replaces the one in effect from `at` on ([model.md §4](model.md))."};
   return spec;
 }
 
 const MapSpec<DurabilityParams>& durabilitySpec() {
   static const Keys<DurabilityParams> k;
-  static const MapSpec<DurabilityParams> spec{{
-      k.inlined<graphSpec>(&DurabilityParams::graph),
-      k("strata", &DurabilityParams::strata, mapValue<strataSpec>(),
-        "tilted and folded beds: the graph is read across them"),
-      k("joints", &DurabilityParams::joints, listOfMaps<jointSpec>(), "sets of fracture planes").leftOutWhenEmpty(),
-      k("rind", &DurabilityParams::rind, mapValue<rindSpec>(), "a case-hardened skin"),
-      k("keyframes", &DurabilityParams::keyframes, listOfMaps<keyframeSpec>(),
-        "edits during the run: each carries a graph (points and its own noise), bubbles or a response"),
-  }};
+  static const MapSpec<DurabilityParams> spec{
+      {
+          k.inlined<graphSpec>(&DurabilityParams::graph),
+          k("strata", &DurabilityParams::strata, mapValue<strataSpec>(), "tilted and folded beds"),
+          k("joints", &DurabilityParams::joints, listOfMaps<jointSpec>(), "sets of parallel fracture planes")
+              .leftOutWhenEmpty(),
+          k("rind", &DurabilityParams::rind, mapValue<rindSpec>(), "a case-hardened skin"),
+          k("keyframes", &DurabilityParams::keyframes, listOfMaps<keyframeSpec>(), "edits during the run; below")
+              .range("in time order"),
+      },
+      {},
+      "([model.md §4](model.md))"};
   return spec;
 }
 
@@ -306,7 +321,7 @@ const MapSpec<BubbleSpec>& bubbleSphereSpec() {
   static const Keys<BubbleSpec> k;
   static const MapSpec<BubbleSpec> spec{{
       k(
-          "radius", [](auto& b) -> auto& { return b.extents[0]; }, length(), "the sphere's radius")
+          "radius", [](auto& b) -> auto& { return b.extents[0]; }, length(), "a sphere of offsets")
           .always()
           .unit(kWorld),
   }};
@@ -316,7 +331,10 @@ const MapSpec<BubbleSpec>& bubbleSphereSpec() {
 const MapSpec<BubbleSpec>& bubbleEllipsoidSpec() {
   static const Keys<BubbleSpec> k;
   static const MapSpec<BubbleSpec> spec{{
-      k("radii", &BubbleSpec::extents, lengths3(), "the ellipsoid's radii along x, y, z").always().unit(kWorld),
+      k("radii", &BubbleSpec::extents, lengths3(),
+        "an ellipsoid; exaggerates curvature along its short axes (keep them ≥ 6 voxels)")
+          .always()
+          .unit(kWorld),
   }};
   return spec;
 }
@@ -324,7 +342,7 @@ const MapSpec<BubbleSpec>& bubbleEllipsoidSpec() {
 const MapSpec<BubbleSpec>& bubbleBoxSpec() {
   static const Keys<BubbleSpec> k;
   static const MapSpec<BubbleSpec> spec{{
-      k("half_extents", &BubbleSpec::extents, lengths3(), "the box's half extents along x, y, z").always().unit(kWorld),
+      k("half_extents", &BubbleSpec::extents, lengths3(), "a box of offsets").always().unit(kWorld),
   }};
   return spec;
 }
@@ -334,9 +352,10 @@ const MapSpec<BubbleSpec>& bubbleSpec();
 const MapSpec<BubbleSpec::Member>& memberSpec() {
   static const Keys<BubbleSpec::Member> k;
   static const MapSpec<BubbleSpec::Member> spec{{
-      k("bubble", &BubbleSpec::Member::bubble, mapValue<bubbleSpec>(), "the member's bubble")
-          .requiredHere("a collection member needs a bubble"),
-      k("weight", &BubbleSpec::Member::weight, positive(), "its share of the bubbles placed"),
+      k("bubble", &BubbleSpec::Member::bubble, mapValue<bubbleSpec>(), "a member (may itself be a collection)")
+          .requiredHere("a collection member needs a bubble")
+          .see("bubbles.[].bubble"),
+      k("weight", &BubbleSpec::Member::weight, positive(), "the member's weight (normalised)"),
   }};
   return spec;
 }
@@ -347,31 +366,39 @@ const MapSpec<BubbleSpec>& bubbleSpec() {
   static const MapSpec<BubbleSpec> spec{
       {
           k.kind(Kind::Sphere, self, mapValue<bubbleSphereSpec>(), "a sphere"),
-          k.kind(Kind::Ellipsoid, self, mapValue<bubbleEllipsoidSpec>(), "an ellipsoid, axis-aligned"),
-          k.kind(Kind::Box, self, mapValue<bubbleBoxSpec>(), "a box, axis-aligned"),
+          k.kind(Kind::Ellipsoid, self, mapValue<bubbleEllipsoidSpec>(), "an ellipsoid"),
+          k.kind(Kind::Box, self, mapValue<bubbleBoxSpec>(), "a box"),
           k.kind(Kind::Collection, &BubbleSpec::members,
                  listOfMaps<memberSpec>({"a collection needs at least one member"}),
-                 "several bubbles, each placed in proportion to its weight"),
+                 "several bubbles at once: the weighted mean of their exposures")
+              .range("at least one member"),
       },
       {kinds(namesOf<Kind>())},
-      "Exactly one of `sphere`, `ellipsoid`, `box`, `collection`: the bubble's kind. Every extent spans at least "
-      "one voxel and at most " +
-          formatNumber(kMaxBubbleVoxels) + " at the preset's resolution."};
+      "A **bubble** is a map with exactly one kind. Every extent must span at least one voxel and at most " +
+          formatNumber(kMaxBubbleVoxels) + " voxels at the preset's resolution."};
   return spec;
 }
 
 const MapSpec<BubbleBand>& bandSpec() {
   static const Keys<BubbleBand> k;
-  static const MapSpec<BubbleBand> spec{{
-      k("up_to", &BubbleBand::up_to, numberIn(0.0, 1.0, true), "the band's top altitude; bands go bottom to top")
-          .requiredHere("a band needs 'up_to' (its top altitude, 0..1)")
-          .check(bandsGoUp),
-      k("bubble", &BubbleBand::bubble, mapValue<bubbleSpec>(), "the bubble that measures curvature in the band")
-          .requiredHere("a band needs a 'bubble'")
-          .check(bubbleFitsTheGrid),
-      k("spheroidal", &BubbleBand::spheroidal, numberIn(0.0, 1e6), "k_s: how strongly convex rock rounds"),
-      k("cavernous", &BubbleBand::cavernous, numberIn(0.0, 1e6), "k_c: how strongly concave rock hollows"),
-  }};
+  static const MapSpec<BubbleBand> spec{
+      {
+          k("up_to", &BubbleBand::up_to, numberIn(0.0, 1.0, true), "the band's top")
+              .requiredHere("a band needs 'up_to' (its top altitude, 0..1)")
+              .unit("altitude")
+              .range("(0, 1], strictly increasing; the last exactly 1")
+              .check(bandsGoUp),
+          k("bubble", &BubbleBand::bubble, mapValue<bubbleSpec>(),
+            "the neighbourhood whose air share measures exposure")
+              .requiredHere("a band needs a 'bubble'")
+              .check(bubbleFitsTheGrid),
+          k("spheroidal", &BubbleBand::spheroidal, numberIn(0.0, 1e6), "`k_s`: how fast convex rock weathers"),
+          k("cavernous", &BubbleBand::cavernous, numberIn(0.0, 1e6), "`k_c`: how fast concave rock weathers"),
+      },
+      {},
+      "A list of bands, bottom to top ([model.md §3](model.md)). Without `bubbles`: one band reaching 1, a "
+      "sphere of radius `longest side of grid.size / 16` (kept between 1 and " +
+          formatNumber(kMaxBubbleVoxels) + " voxels), `spheroidal: 1`, `cavernous: 0`."};
   return spec;
 }
 
@@ -380,13 +407,13 @@ const MapSpec<ResponseParams>& responseSpec() {
   static const Keys<ResponseParams> k;
   static const MapSpec<ResponseParams> spec{
       {
-          k.kind(Kind::Power, &ResponseParams::value, positive(), "f(s) = s^p"),
+          k.kind(Kind::Power, &ResponseParams::value, positive(), "`f(x) = x^p`; the default is `{power: 1}`"),
           k.kind(Kind::Threshold, &ResponseParams::value, numberIn(0.0, 1.0, false, true),
-                 "f(s) = 1 where s > t, else 0"),
-          k.kind(Kind::Curve, &ResponseParams::curve, responseCurve(), "f read off a polyline"),
+                 "`f(x) = max(0, (x − t) / (1 − t))`: `0.5` leaves flat rock alone"),
+          k.kind(Kind::Curve, &ResponseParams::curve, responseCurve(), "piecewise linear `f`"),
       },
       {kinds(namesOf<Kind>())},
-      "Exactly one of `power`, `threshold`, `curve`: the decimation response f of the exposure s."};
+      "Exactly one of `power`, `threshold` and `curve` ([model.md §5](model.md))."};
   return spec;
 }
 
@@ -394,101 +421,138 @@ const MapSpec<ResponseParams>& responseSpec() {
 
 const MapSpec<GridParams>& gridSpec() {
   static const Keys<GridParams> k;
-  static const MapSpec<GridParams> spec{{
-      k("size", &GridParams::size, lengths3(), "the simulation domain along x, y, z").unit(kWorld),
-      k("resolution", &GridParams::resolution, integer<int>(GridParams::kMinResolution, GridParams::kMaxResolution),
-        "voxels along the longest side; the voxel size h is that side / resolution"),
-      k("ground", &GridParams::ground, boolean(), "false: a free-floating rock, rockfall and colluvium off"),
-  }};
+  static const MapSpec<GridParams> spec{
+      {
+          k("size", &GridParams::size, lengths3(), "the simulation domain x, y, z; the rock is clipped to it")
+              .unit(kWorld)
+              .range("each (0, 10⁶]"),
+          k("resolution", &GridParams::resolution, integer<int>(GridParams::kMinResolution, GridParams::kMaxResolution),
+            "voxels along the longest side of `grid.size`: `h = longest side / resolution`")
+              .unit("voxels"),
+          k("ground", &GridParams::ground, boolean(),
+            "a solid, never-weathering ground below z = 0; `false`: a free-floating rock, rockfall and colluvium off"),
+      },
+      {},
+      "A grid that needs more than 60 % of the machine's memory (or of `ulimit -v`) is refused at "
+      "`grid.resolution` ([model.md §1](model.md))."};
   return spec;
 }
 
 const MapSpec<RockfallParams>& rockfallSpec() {
   static const Keys<RockfallParams> k;
-  static const MapSpec<RockfallParams> spec{{
-      k("mode", &RockfallParams::mode, choice<RockfallMode>(),
-        "what unsupported rock does: falls whole, falls and crumbles to colluvium, or stays"),
-  }};
+  static const MapSpec<RockfallParams> spec{
+      {
+          k("mode", &RockfallParams::mode, choice<RockfallMode>(),
+            "rock cut loose falls and stays rock, falls and becomes colluvium, or floats"),
+      },
+      {},
+      "([model.md §6](model.md))"};
   return spec;
 }
 
 const MapSpec<ColluviumParams>& colluviumSpec() {
   static const Keys<ColluviumParams> k;
-  static const MapSpec<ColluviumParams> spec{{
-      k("yield", &ColluviumParams::yield, numberIn(0.0, 1.0), "units of colluvium per decimated rock voxel"),
-      k("talus_angle", &ColluviumParams::talus_angle, numberIn(0.0, 90.0, true, true), "the angle debris rests at")
-          .unit(kDegrees),
-      k("removal", &ColluviumParams::removal, numberIn(0.0, 1.0),
-        "the fraction of exposed colluvium carried away per cycle"),
-  }};
+  static const MapSpec<ColluviumParams> spec{
+      {
+          k("yield", &ColluviumParams::yield, numberIn(0.0, 1.0), "how much of weathered rock piles up")
+              .unit("voxels per decimated voxel"),
+          k("talus_angle", &ColluviumParams::talus_angle, numberIn(0.0, 90.0, true, true),
+            "the steepest slope piles keep")
+              .unit(kDegrees),
+          k("removal", &ColluviumParams::removal, numberIn(0.0, 1.0),
+            "the share of exposed colluvium carried away each cycle")
+              .unit("per cycle"),
+      },
+      {},
+      "([model.md §7](model.md))"};
   return spec;
 }
 
 const MapSpec<StopParams>& untilSpec() {
   static const Keys<StopParams> k;
-  static const MapSpec<StopParams> spec{{
-      k("rock_volume_fraction", &StopParams::rock_volume_fraction, numberIn(0.0, 1.0, true, true),
-        "stop after the first cycle that leaves at most this fraction of the initial rock"),
-  }};
+  static const MapSpec<StopParams> spec{
+      {
+          k("rock_volume_fraction", &StopParams::rock_volume_fraction, numberIn(0.0, 1.0, true, true),
+            "stop after the first cycle that leaves at most this share of the initial rock"),
+      },
+      {},
+      "([model.md §9](model.md))"};
   return spec;
 }
 
 const MapSpec<MeshParams>& meshSpec() {
   static const Keys<MeshParams> k;
-  static const MapSpec<MeshParams> spec{{
-      k("smoothing", &MeshParams::smoothing, numberIn(0.0, 4.0), "Gaussian passes over the voxel level set"),
-      k("subdivision", &MeshParams::subdivision, integer<int>(0, 3), "levels of Catmull-Clark subdivision"),
-      k("max_error", &MeshParams::max_error, numberIn(0.0, 8.0, true),
-        "LOD0 is simplified until it would leave the refined surface by more than this")
-          .unit("voxels"),
-      k("lods", &MeshParams::lods, lodList(), "LOD1, LOD2, ...: ratios of LOD0's triangles or triangle counts"),
-      k("detail", &MeshParams::detail, mapValue<noiseSpec>(),
-        "seeded roughness along the refined surface's normals (RMS about amplitude); none when absent"),
-  }};
+  static const MapSpec<MeshParams> spec{
+      {
+          k("smoothing", &MeshParams::smoothing, numberIn(0.0, 4.0),
+            "smoothing of the voxel surface before polygonising (rounded to whole passes)")
+              .unit("Gaussian passes"),
+          k("subdivision", &MeshParams::subdivision, integer<int>(0, 3), "Catmull-Clark levels (OpenSubdiv)")
+              .unit("levels"),
+          k("max_error", &MeshParams::max_error, numberIn(0.0, 8.0, true), "how far LOD0 may leave the refined surface")
+              .unit("voxels"),
+          k("lods", &MeshParams::lods, lodList(),
+            "LOD1, LOD2, …: ratios of LOD0's triangles, or triangle budgets for both surfaces together"),
+          k("detail", &MeshParams::detail, mapValue<noiseSpec>(),
+            "seeded roughness along the normals before simplification; its `amplitude` is the RMS displacement "
+            "on neutral rock, in world units")
+              .see("durability.noise.[]"),
+      },
+      {},
+      "([meshes.md](meshes.md))"};
   return spec;
 }
 
 const MapSpec<PaletteLayer>& layerSpec() {
   static const Keys<PaletteLayer> k;
   static const MapSpec<PaletteLayer> spec{{
-      k("durability", &PaletteLayer::durability, positive(), "the layer's durability; layers from soft to durable")
+      k("durability", &PaletteLayer::durability, positive(), "the durability this colour is pinned to")
           .requiredHere("a layer needs durability and color")
           .check(layersSoftToDurable),
-      k("color", &PaletteLayer::color, color(), "its colour").requiredHere("a layer needs durability and color"),
+      k("color", &PaletteLayer::color, color(), "sRGB").requiredHere("a layer needs durability and color"),
   }};
   return spec;
 }
 
 const MapSpec<BakeParams>& bakeSpec() {
   static const Keys<BakeParams> k;
-  static const MapSpec<BakeParams> spec{{
-      k("palette", &BakeParams::palette, choice<Palette>(),
-        "natural: the layers' colours; debug: blue soft .. red durable; curvature: blue concave .. red convex"),
-      k("layers", &BakeParams::layers, listOfMaps<layerSpec>(),
-        "natural colours keyed by durability, interpolated; none: a built-in sandstone"),
-      k("colluvium_color", &BakeParams::colluvium_color, color(), "the colluvium's colour; default a sandy buff"),
-  }};
+  static const MapSpec<BakeParams> spec{
+      {
+          k("palette", &BakeParams::palette, choice<Palette>(), "how vertex colours are made"),
+          k("layers", &BakeParams::layers, listOfMaps<layerSpec>(),
+            "`natural`: colours keyed by durability, interpolated in linear light")
+              .range("durability > 0, strictly increasing")
+              .defaultIs("`[]`: built-in sandstone"),
+          k("colluvium_color", &BakeParams::colluvium_color, color(), "`natural`: the colluvium's colour")
+              .defaultIs("`'#B49A78'` (sandy buff)"),
+      },
+      {},
+      "([meshes.md](meshes.md))"};
   return spec;
 }
 
 const MapSpec<RenderParams>& turntableSpec() {
   static const Keys<RenderParams> k;
   static const MapSpec<RenderParams> spec{{
-      k("frames", &RenderParams::turntable_frames, integer<int>(0, 360), "views around z; 0: no turntable"),
+      k("frames", &RenderParams::turntable_frames, integer<int>(0, 360), "views around z (0: no turntable)"),
   }};
   return spec;
 }
 
 const MapSpec<RenderParams>& renderSpec() {
   static const Keys<RenderParams> k;
-  static const MapSpec<RenderParams> spec{{
-      k("template", &RenderParams::template_name, templateName(), "the POV-Ray template, by name"),
-      k("width", &RenderParams::width, integer<int>(16, 8192), "image width").unit("pixels"),
-      k("height", &RenderParams::height, integer<int>(16, 8192), "image height").unit("pixels"),
-      k("quality", &RenderParams::quality, integer<int>(0, 11), "POV-Ray +Q"),
-      k("antialias", &RenderParams::antialias, numberIn(0.0, 3.0), "POV-Ray +A threshold; 0 turns it off"),
-      k("turntable", self, mapValue<turntableSpec>(), "views around the rock and their contact sheet"),
-  }};
+  static const MapSpec<RenderParams> spec{
+      {
+          k("template", &RenderParams::template_name, templateName(), "the POV-Ray template, by name, never a path"),
+          k("width", &RenderParams::width, integer<int>(16, 8192), "image width").unit("pixels"),
+          k("height", &RenderParams::height, integer<int>(16, 8192), "image height").unit("pixels"),
+          k("quality", &RenderParams::quality, integer<int>(0, 11), "POV-Ray `+Q`"),
+          k("antialias", &RenderParams::antialias, numberIn(0.0, 3.0),
+            "POV-Ray `+A` threshold; 0 turns antialiasing off"),
+          k("turntable", self, mapValue<turntableSpec>(), "views around the rock"),
+      },
+      {},
+      "([rendering.md](rendering.md))"};
   return spec;
 }
 
@@ -505,43 +569,48 @@ const MapSpec<Preset>& presetSpec() {
   static const Keys<Preset> k;
   static const MapSpec<Preset> spec{
       {
-          k("rockbake", &Preset::schema, schemaVersion(), "the schema version")
+          k("rockbake", &Preset::schema, schemaVersion(), "the schema version this file is written for")
               .required("missing 'rockbake: 1' (the schema version)"),
-          k.refused("extends", "path of a base preset, relative to this file", refuseExtendsOverride,
-                    "a base preset merged under this one (above)"),
-          k("name", &Preset::name, assetName(), "the asset's name: it names the output folder")
+          k.refused("extends", "path", refuseExtendsOverride,
+                    "a base preset merged under this one ([libraries.md](libraries.md)); a base may extend another"),
+          k("name", &Preset::name, assetName(), "the asset's name: its folder `OUT/<name>/` and the name in its files")
               .required("missing 'name' (the asset's name, [a-z0-9_-]+)"),
-          k("seed", &Preset::seed, unsigned64(), "every random choice derives from it"),
+          k("seed", &Preset::seed, unsigned64(), "every random choice derives from it ([model.md §10](model.md))"),
           k("grid", &Preset::grid, mapValue<gridSpec>(), "the simulation domain"),
           k("shape", &Preset::shape, mapValue<shapeSpec>(), "the initial rock")
               .required("missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}"),
-          k("durability", &Preset::durability, mapValue<durabilitySpec>(), "how durable the rock is, and where"),
-          k("bubbles", &Preset::bubbles, bandList(), "the bubble graph: bubbles and weathering strengths by altitude")
+          k("durability", &Preset::durability, mapValue<durabilitySpec>(), "how hard the rock is"),
+          k("bubbles", &Preset::bubbles, bandList(), "the bubble graph: how curvature is measured at each altitude")
+              .range("at least one band")
               .keyframed(KeyframePart::Bubbles)
-              .byDefault(defaultBubbles, "one band: a sphere of radius 1/16 of grid.size's longest side, within 1 .. " +
-                                             formatNumber(kMaxBubbleVoxels) + " voxels; spheroidal 1"),
-          k("response", &Preset::response, mapValue<responseSpec>(), "the decimation response")
-              .keyframed(KeyframePart::Response),
-          k("rockfall", &Preset::rockfall, mapValue<rockfallSpec>(), "loose rock").resumable(),
-          k("colluvium", &Preset::colluvium, mapValue<colluviumSpec>(), "debris").resumable(),
-          k("time", stopTime, positive(), "how long to weather: ceil(time / h) cycles, the same rock at any resolution")
+              .byDefault(defaultBubbles, "one band, below"),
+          k("response", &Preset::response, mapValue<responseSpec>(), "the decimation response `f`")
+              .keyframed(KeyframePart::Response)
+              .defaultIs("`{power: 1}`"),
+          k("rockfall", &Preset::rockfall, mapValue<rockfallSpec>(), "what happens to rock cut loose").resumable(),
+          k("colluvium", &Preset::colluvium, mapValue<colluviumSpec>(), "weathered material piling up").resumable(),
+          k("time", stopTime, positive(), "how long to weather: `⌈time / h⌉` cycles, the same rock at any resolution")
               .check(timeWithinCycleLimit)
               .resumable()
-              .unit("units of time"),
+              .unit("time (world units of retreat)")
+              .range("> 0, at most " + docWhole(kMaxCycles) + " cycles at the resolution"),
           k("cycles", stopCycles, integer<int>(1, kMaxCycles), "how many cycles to run (resolution dependent)")
               .resumable(),
           k("until", &Preset::stop, mapValue<untilSpec>(), "stop early").leftOutWhenEmpty().resumable(),
-          k("mesh", &Preset::mesh, mapValue<meshSpec>(), "meshes and LODs"),
-          k("bake", &Preset::bake, mapValue<bakeSpec>(), "colours baked into the meshes"),
-          k("export", &Preset::exports, exportFormats(), "the files a bake writes"),
-          k("tags", &Preset::tags, tagList(), "asset.json's tags"),
+          k("mesh", &Preset::mesh, mapValue<meshSpec>(), "extraction, subdivision, detail, LODs"),
+          k("bake", &Preset::bake, mapValue<bakeSpec>(), "palettes: the colours baked into the meshes"),
+          k("export", &Preset::exports, exportFormats(),
+            "the files a bake writes ([formats.md](formats.md)); LODs come with `glb`"),
+          k("tags", &Preset::tags, tagList(), "`asset.json`'s tags (a tag given twice is kept once)"),
           k("units_per_meter", &Preset::units_per_meter, numberIn(0.0, 1e6, true),
-            "world units per metre: asset.json's physical size"),
-          k("render", &Preset::render, mapValue<renderSpec>(), "the still render"),
+            "world units per metre: `asset.json`'s physical size"),
+          k("render", &Preset::render, mapValue<renderSpec>(), "the POV-Ray render"),
       },
       {exactlyOne({"time", "cycles"}, "missing 'time' (or 'cycles')", "give either 'time' or 'cycles', not both",
                   "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution")},
-      "Exactly one of `time` and `cycles`.",
+      "Exactly one of `time` and `cycles` ([model.md §9](model.md)). The file is at most 1 MiB of YAML holding "
+      "one document, a map. Control characters other than tab, line feed and carriage return are refused (shown "
+      "escaped in the message).",
       /*keys_apart=*/true};
   return spec;
 }

@@ -14,8 +14,8 @@ namespace rockbake::schema {
 namespace {
 
 template <class T>
-Value<T> custom(std::string text, std::function<void(const Field&, T&, const ReadContext&)> read) {
-  return {std::move(text), nullptr, false, std::move(read), toJson<T>};
+Value<T> custom(std::string type, std::string range, std::function<void(const Field&, T&, const ReadContext&)> read) {
+  return {std::move(type), std::move(range), nullptr, false, std::move(read), toJson<T>};
 }
 
 // An [a, b] pair, a in [0, 1]; `pair` names it in the problem ("[altitude, durability]").
@@ -55,7 +55,7 @@ void checkBubbleSize(const BubbleSpec& bubble, const Field& f, double h) {
 // ---- values ----
 
 Value<int> schemaVersion() {
-  return custom<int>("1", [](const Field& version, int& schema, const ReadContext&) {
+  return custom<int>("whole number", "`1`", [](const Field& version, int& schema, const ReadContext&) {
     const long long given =
         version.integer(std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
     if (given != 1)
@@ -66,17 +66,18 @@ Value<int> schemaVersion() {
 }
 
 Value<std::string> assetName() {
-  return custom<std::string>("text: a-z, 0-9, _ and -, at most " + std::to_string(kMaxNameLength) + " characters",
-                             [](const Field& f, std::string& name, const ReadContext&) {
-                               name = f.string();
-                               if (const auto problem = assetNameProblem(name))
-                                 f.fail(*problem, "it names the output folder");
-                             });
+  return custom<std::string>("name", "", [](const Field& f, std::string& name, const ReadContext&) {
+    name = f.string();
+    if (const auto problem = assetNameProblem(name)) f.fail(*problem, "it names the output folder");
+  });
 }
 
-Value<std::filesystem::path> existingFile(std::string what) {
+Value<std::filesystem::path> existingFile(std::string what, std::string range) {
   Value<std::filesystem::path> value = {
-      "path of the " + what + " file, relative to the file that gives it", nullptr, false,
+      "path",
+      std::move(range),
+      nullptr,
+      false,
       [what](const Field& f, std::filesystem::path& path, const ReadContext&) {
         const std::filesystem::path given = f.string();
         path = std::filesystem::absolute(given.is_absolute() ? given : f.folder() / given).lexically_normal();
@@ -90,7 +91,7 @@ Value<std::filesystem::path> existingFile(std::string what) {
 
 Value<std::vector<std::array<double, 2>>> altitudePoints() {
   return custom<std::vector<std::array<double, 2>>>(
-      "list of [altitude in [0, 1], durability > 0], altitudes increasing",
+      "list of `[altitude, durability]`", "at least one point; altitude [0, 1], strictly increasing; durability > 0",
       [](const Field& f, std::vector<std::array<double, 2>>& points, const ReadContext&) {
         points.clear();
         const std::size_t n = f.size();
@@ -108,7 +109,8 @@ Value<std::vector<std::array<double, 2>>> altitudePoints() {
 
 Value<std::vector<std::array<double, 2>>> responseCurve() {
   return custom<std::vector<std::array<double, 2>>>(
-      "list of [x, y], each in [0, 1], x increasing from 0 to 1",
+      "list of `[x, y]`",
+      "at least two points; x in [0, 1], strictly increasing, from exactly 0 to exactly 1; y in [0, 1]",
       [](const Field& c, std::vector<std::array<double, 2>>& curve, const ReadContext&) {
         curve.clear();
         for (std::size_t i = 0; i < c.size(); ++i) {
@@ -124,7 +126,7 @@ Value<std::vector<std::array<double, 2>>> responseCurve() {
 
 Value<std::vector<double>> lodList() {
   return custom<std::vector<double>>(
-      "list, decreasing: every entry a ratio in (0, 1) of LOD0's triangles, or every entry a whole triangle count",
+      "list of numbers", "each (0, 10⁹]; all ratios (< 1) or all whole triangle counts (≥ 1); strictly decreasing",
       [](const Field& l, std::vector<double>& lods, const ReadContext&) {
         lods.clear();
         for (std::size_t i = 0; i < l.size(); ++i) {
@@ -145,8 +147,7 @@ Value<std::vector<double>> lodList() {
 }
 
 Value<SrgbColor> color() {
-  return custom<SrgbColor>("sRGB colour: \"#rrggbb\" or [r, g, b], each in [0, 1]", [](const Field& f, SrgbColor& rgb,
-                                                                                       const ReadContext&) {
+  return custom<SrgbColor>("colour", "", [](const Field& f, SrgbColor& rgb, const ReadContext&) {
     if (f.isSequence()) {
       if (f.size() != 3) f.fail("expected [r, g, b] (sRGB, each 0..1) or \"#rrggbb\"");
       rgb = {f.item(0).numberIn(0.0, 1.0), f.item(1).numberIn(0.0, 1.0), f.item(2).numberIn(0.0, 1.0)};
@@ -162,7 +163,7 @@ Value<SrgbColor> color() {
 
 Value<std::vector<std::string>> exportFormats() {
   static const std::vector<std::string> kFormats = {"ply", "obj", "glb", "vdb"};
-  return custom<std::vector<std::string>>("list of: " + joinNames(kFormats) + ", each once",
+  return custom<std::vector<std::string>>("list", "each `ply`, `obj`, `glb` or `vdb`, none twice",
                                           [](const Field& e, std::vector<std::string>& exports, const ReadContext&) {
                                             exports.clear();
                                             for (std::size_t i = 0; i < e.size(); ++i) {
@@ -175,7 +176,7 @@ Value<std::vector<std::string>> exportFormats() {
 }
 
 Value<std::vector<std::string>> tagList() {
-  return custom<std::vector<std::string>>("list of text, each a-z, 0-9, _ and -",
+  return custom<std::vector<std::string>>("list of names", "",
                                           [](const Field& t, std::vector<std::string>& tags, const ReadContext&) {
                                             tags.clear();
                                             for (std::size_t i = 0; i < t.size(); ++i) {
@@ -189,7 +190,7 @@ Value<std::vector<std::string>> tagList() {
 }
 
 Value<std::string> templateName() {
-  return custom<std::string>("name of a template in render_templates/ (without .pov)",
+  return custom<std::string>("name", "a template in `render_templates/` (or `$ROCKBAKE_RENDER_TEMPLATES`)",
                              [](const Field& f, std::string& name, const ReadContext&) {
                                name = f.string();
                                if (const auto problem = renderTemplateProblem(name, renderTemplatesDir()))

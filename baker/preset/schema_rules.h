@@ -21,16 +21,17 @@ namespace rockbake::schema {
 constexpr double kMaxBubbleVoxels = 48.0;
 
 // ---- values ----
-Value<int> schemaVersion();                                   // `rockbake:`, which must be 1
-Value<std::string> assetName();                               // [a-z0-9_-]+, at most kMaxNameLength
-Value<std::filesystem::path> existingFile(std::string what);  // relative to the file that gives it; must exist
-Value<std::vector<std::array<double, 2>>> altitudePoints();   // [[altitude, durability], ...], altitudes increasing
-Value<std::vector<std::array<double, 2>>> responseCurve();    // [[x, y], ...] from x = 0 to x = 1
-Value<std::vector<double>> lodList();                         // ratios or triangle counts, decreasing
-Value<SrgbColor> color();                                     // "#rrggbb" or [r, g, b]
-Value<std::vector<std::string>> exportFormats();              // ply, obj, glb, vdb, each once
-Value<std::vector<std::string>> tagList();                    // asset names; repeats dropped
-Value<std::string> templateName();                            // a template in render_templates/, by name
+Value<int> schemaVersion();      // `rockbake:`, which must be 1
+Value<std::string> assetName();  // [a-z0-9_-]+, at most kMaxNameLength
+// A file named relative to the file that gives it, which must exist; `what` names it in problems ("image").
+Value<std::filesystem::path> existingFile(std::string what, std::string range);
+Value<std::vector<std::array<double, 2>>> altitudePoints();  // [[altitude, durability], ...], altitudes increasing
+Value<std::vector<std::array<double, 2>>> responseCurve();   // [[x, y], ...] from x = 0 to x = 1
+Value<std::vector<double>> lodList();                        // ratios or triangle counts, decreasing
+Value<SrgbColor> color();                                    // "#rrggbb" or [r, g, b]
+Value<std::vector<std::string>> exportFormats();             // ply, obj, glb, vdb, each once
+Value<std::vector<std::string>> tagList();                   // asset names; repeats dropped
+Value<std::string> templateName();                           // a template in render_templates/, by name
 
 void refuseExtendsOverride(const Field& extends);
 

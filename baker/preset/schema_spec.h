@@ -69,7 +69,8 @@ using MapInfoOf = const MapInfo& (*)();
 // becomes JSON, and what the reference says about it.
 template <class T>
 struct Value {
-  std::string text;         // "number in [0, 1]"
+  std::string type;         // the reference's type: "number", "3 lengths", "list"
+  std::string range;        // and range: "[0, 1]", "> 0", "8 … 2048"
   MapInfoOf map = nullptr;  // a map's keys, or each item's for a list of maps
   bool list = false;        // with `map`: a list of such maps
   std::function<void(const Field&, T&, const ReadContext&)> read;
@@ -96,24 +97,25 @@ struct KeyInfo {
   std::string name;  // empty for keys written inline (the durability graph's points and noise)
   std::string doc;
   std::string unit;
-  std::string value;        // Value::text
+  std::string type, range;  // Value::type and ::range, or what .range() gives
   MapInfoOf map = nullptr;  // its map's keys (inline: keys of this same map)
   bool list = false;
   bool kind = false;  // one of its map's kinds
   Presence presence = Presence::Optional;
   std::string missing, missing_hint;  // the problem when a required key is absent
   Emit emit = Emit::Always;
-  std::optional<KeyframePart> keyframe;               // the studio and `resume` edit it as (part of) a keyframe
-  bool resume = false;                                // `resume` may change it from the checkpoint on
-  std::string inherited_with;                         // from a base, inherited only with this sibling (noise: points)
-  std::string default_text;                           // what the default is when the struct's own cannot say it
+  std::optional<KeyframePart> keyframe;  // the studio and `resume` edit it as (part of) a keyframe
+  bool resume = false;                   // `resume` may change it from the checkpoint on
+  std::string inherited_with;            // from a base, inherited only with this sibling (noise: points)
+  std::string default_text;              // what the reference says the default is, when the struct's own cannot say it
+  std::string see;                       // the key whose map this one's is, documented there instead ("bubbles")
   std::function<std::optional<json>()> default_json;  // the member of a default-constructed struct
 };
 template <class T>
 KeyInfo keyInfo(std::string name, std::string doc, const Value<T>& value) {
   KeyInfo info;
   info.name = std::move(name), info.doc = std::move(doc);
-  info.value = value.text, info.map = value.map, info.list = value.list;
+  info.type = value.type, info.range = value.range, info.map = value.map, info.list = value.list;
   return info;
 }
 
@@ -179,6 +181,10 @@ struct Key {
     when_absent = std::move(fill), info.default_text = std::move(text);
     return std::move(*this);
   }
+  // What the reference says, where the table's own value cannot say it.
+  Key&& range(std::string r) && { return info.range = std::move(r), std::move(*this); }
+  Key&& defaultIs(std::string text) && { return info.default_text = std::move(text), std::move(*this); }
+  Key&& see(std::string key_path) && { return info.see = std::move(key_path), std::move(*this); }
 };
 
 template <class S>
@@ -346,9 +352,9 @@ struct Keys {
   }
 
   // A key with no member: `read` checks it (and refuses it); it is never written.
-  Key<S> refused(std::string name, std::string value_text, void (*read)(const Field&), std::string doc) const {
+  Key<S> refused(std::string name, std::string type, void (*read)(const Field&), std::string doc) const {
     Key<S> key;
-    key.info.name = std::move(name), key.info.doc = std::move(doc), key.info.value = std::move(value_text);
+    key.info.name = std::move(name), key.info.doc = std::move(doc), key.info.type = std::move(type);
     key.assign = [read](const Field& f, S&, const ReadContext&) { read(f); };
     key.to_json = [](const S&) -> std::optional<json> { return std::nullopt; };
     return key;
