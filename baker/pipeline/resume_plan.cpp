@@ -2,36 +2,58 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "pipeline/manifest.h"
+#include "preset/keyframe_edit.h"
 #include "preset/preset_json.h"
+#include "preset/schema.h"
+#include "preset/yaml_text.h"
 
 namespace rockbake {
+namespace {
+
+// The key path a "--set key.path=VALUE" names.
+std::string setPath(const std::string& set) {
+  return set.substr(0, set.find('='));
+}
+
+// Whether `path` is one of `prefixes` or lies under one.
+bool underAny(const std::string& path, const std::vector<std::string>& prefixes) {
+  return std::any_of(prefixes.begin(), prefixes.end(),
+                     [&](const std::string& prefix) { return path == prefix || path.rfind(prefix + ".", 0) == 0; });
+}
+
+// `sets` split into the keyframed ones and those that apply from the checkpoint on; anything else is refused.
+void sortSets(const std::vector<std::string>& sets, std::vector<std::string>& keyframed,
+              std::vector<std::string>& direct) {
+  const std::vector<std::string> keyframed_keys = schema::keyframedKeys(), direct_keys = schema::resumableKeys();
+  for (const auto& set : sets) {
+    const std::string path = setPath(set);
+    if (!path.empty() && underAny(path, keyframed_keys))
+      keyframed.push_back(set);
+    else if (!path.empty() && underAny(path, direct_keys))
+      direct.push_back(set);
+    else {
+      std::vector<std::string> allowed = keyframed_keys;
+      allowed.insert(allowed.end(), direct_keys.begin(), direct_keys.end());
+      throw InputError(
+          {"--set " + set}, path,
+          "a resumed bake cannot change '" + path + "': the checkpoint's state was made with it",
+          "resume may change " + joinNamesWith(allowed, "and") + "; bake from the start to change the rest");
+    }
+  }
+}
+
+}  // namespace
 
 ResumePlan planResume(const Checkpoint& c, const std::vector<std::string>& sets) {
-  static const std::vector<std::string> kKeyframed = {"durability.points", "durability.noise", "bubbles", "response"};
-  static const std::vector<std::string> kDirect = {"colluvium", "rockfall", "time", "cycles", "until"};
-  const auto under = [](const std::string& path, const std::string& prefix) {
-    return path == prefix || path.rfind(prefix + ".", 0) == 0;
-  };
   std::vector<std::string> keyframed, direct;
-  for (const auto& set : sets) {
-    const std::string path = set.substr(0, set.find('='));
-    const auto matches = [&](const std::vector<std::string>& prefixes) {
-      return std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return under(path, p); });
-    };
-    if (matches(kKeyframed))
-      keyframed.push_back(set);
-    else if (matches(kDirect))
-      direct.push_back(set);
-    else
-      throw InputError({"--set " + set}, path,
-                       "a resumed bake cannot change '" + path + "': the checkpoint's state was made with it",
-                       "resume may change durability.points, durability.noise, bubbles, response, colluvium, "
-                       "rockfall, time, cycles and until; bake from the start to change the rest");
-  }
+  sortSets(sets, keyframed, direct);
 
   const Preset original = parsePreset(c.preset_text, c.preset_file, c.overrides);
   if (presetFingerprint(original, {}) != c.preset_hash)
@@ -44,34 +66,28 @@ ResumePlan planResume(const Checkpoint& c, const std::vector<std::string>& sets)
   edited_overrides.set_origins.resize(edited_overrides.sets.size());
   const Preset edited = parsePreset(c.preset_text, c.preset_file, edited_overrides);  // validates the edits
 
-  // Changes to the graph, bubbles and response become a keyframe at the checkpoint's time.
-  const double h = c.snapshot.rock.layout.h;
-  const double t = c.snapshot.cycle * h;
-  std::vector<DurabilityKeyframe> keyframes = original.durability.keyframes;
-  DurabilityKeyframe k;
-  k.at = t;
-  const nlohmann::json before = presetToJson(original), after = presetToJson(edited);
-  if (before["durability"]["points"] != after["durability"]["points"] ||
-      before["durability"]["noise"] != after["durability"]["noise"])
-    k.graph = edited.durability.graph;
-  if (before["bubbles"] != after["bubbles"]) k.bubbles = edited.bubbles;
-  if (before["response"] != after["response"]) k.response = edited.response;
-
   ResumePlan plan;
   plan.overrides = c.overrides;
   plan.overrides.set_origins.resize(plan.overrides.sets.size());
   for (const auto& set : direct) plan.overrides.sets.push_back(set), plan.overrides.set_origins.push_back("");
-  if (k.graph || k.bubbles || k.response) {
-    auto at = std::find_if(keyframes.begin(), keyframes.end(), [&](const DurabilityKeyframe& e) { return e.at >= t; });
-    if (at != keyframes.end() && at->at == t) {  // one already at that time: the edit merges into it
-      if (k.graph) at->graph = k.graph;
-      if (k.bubbles) at->bubbles = k.bubbles;
-      if (k.response) at->response = k.response;
-    } else {
-      keyframes.insert(at, k);
-    }
+  // Edits of the graph, bubbles and response become a keyframe at the checkpoint's time, as in the studio.
+  std::vector<std::string> keyframed_paths;
+  for (const auto& set : keyframed) keyframed_paths.push_back(setPath(set));
+  const KeyframeEdit edit = keyframeEditOf(edited, keyframed_paths);
+  if (!edit.empty()) {
+    if (c.snapshot.cycle == 0)
+      throw InputError({"--set " + keyframed.front()}, keyframed_paths.front(),
+                       "the checkpoint is at time 0, where an edit changes the preset itself",
+                       "bake the preset from the start with these --set");
+    const double h = c.snapshot.rock.layout.h;
+    const double t = c.snapshot.cycle * h;
     Preset with = original;
-    with.durability.keyframes = keyframes;
+    const std::vector<double> dropped = applyKeyframeEdit(with, edit, t, h);
+    if (!dropped.empty())
+      spdlog::warn(
+          "resume: the edit at time {} drops the preset's later keyframes (at {}): they belong to the run "
+          "the checkpoint leaves",
+          t, fmt::join(dropped, ", "));
     plan.overrides.sets.push_back("durability.keyframes=" + presetToJson(with)["durability"]["keyframes"].dump());
     plan.overrides.set_origins.push_back("");
   }

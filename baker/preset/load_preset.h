@@ -10,11 +10,11 @@
 //
 // Every problem throws InputError naming the file, line, column (1-based) and
 // key path ("bubbles.0.bubble.sphere.radius"), what is wrong and what to do; a
-// problem in a value a base preset gave is located in that base. Unknown keys
-// are rejected with a "did you mean" suggestion: reads record the keys they ask
-// for (preset/yaml_field.h), and any other key is unknown, so the reading code
-// is the one list of the schema's keys; when there are several problems,
-// unknown keys are reported first. Relative paths (shape.image.path,
+// problem in a value a base preset gave is located in that base. The schema's
+// table (preset/schema.h) says every key; reads record the keys they ask for
+// (preset/yaml_field.h), and any other key is rejected as unknown with a "did
+// you mean" suggestion; when there are several problems, unknown keys are
+// reported first. Relative paths (shape.image.path,
 // shape.mesh.path) are resolved against the folder of the file that gives them
 // and must exist; reading them is the inputs stage's (inputs/resolve_shape.h).
 #pragma once

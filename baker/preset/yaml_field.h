@@ -5,7 +5,8 @@
 // where: file:line:column and key path. Reads record the keys they ask for;
 // once a document has been read, reportUnreadKeys() reports every key of a
 // checked map that no read asked for as unknown, with a "did you mean". The
-// reading code is thus the one list of the schema's keys.
+// preset's reads are driven by its schema's table (preset/schema_spec.h), so
+// the table is the one list of its keys; a library file's are its reader's.
 //
 // Internal to the preset stage: it exposes yaml-cpp.
 #pragma once
@@ -53,8 +54,8 @@ inline const Origin& originOf(const std::vector<Origin>& origins, const std::str
 }
 
 // Which keys the reads asked for, so that the keys nobody asked for can be
-// reported as unknown afterwards (reportUnreadKeys): the schema is the reading
-// code itself, with no separate list of keys to keep in step.
+// reported as unknown afterwards (reportUnreadKeys), with no separate list of
+// keys to keep in step with the reading.
 struct ReadLog {
   std::set<std::string> asked;              // key paths any read asked for (present or not)
   std::vector<std::string> asked_in_order;  // the same, in the order first asked

@@ -43,6 +43,13 @@ std::string joinNames(const std::vector<std::string>& names) {
   return out;
 }
 
+std::string joinNamesWith(const std::vector<std::string>& names, const std::string& conjunction) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " " + conjunction + " " : ", ") + names[i];
+  return out;
+}
+
 bool isAssetName(const std::string& name) {
   return !assetNameProblem(name);
 }

@@ -22,6 +22,8 @@ std::optional<std::uint64_t> unsignedValue(const YAML::Node& node);
 
 // "a, b, c".
 std::string joinNames(const std::vector<std::string>& names);
+// "a, b and c" (conjunction "and"), "a, b or c".
+std::string joinNamesWith(const std::vector<std::string>& names, const std::string& conjunction);
 
 // Asset and job names name folders: non-empty, only a-z, 0-9, '_' and '-',
 // at most kMaxNameLength characters.

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -21,6 +22,8 @@
 #include "core/error.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/read_inputs.h"
+#include "preset/schema.h"
+#include "preset/yaml_text.h"
 #include "studio/studio_session.h"
 
 namespace rockbake {
@@ -51,6 +54,21 @@ json parseBody(const httplib::Request& req) {
   } catch (const json::exception& e) {
     throw StudioError(400, std::string("the request body is not valid JSON: ") + e.what());
   }
+}
+
+// A palette by the preset's names for it (bake.palette), "durability" being the debug palette's other name.
+PreviewPalette previewPalette(const std::string& name) {
+  const std::optional<Palette> palette = name == "durability" ? Palette::Debug : schema::valueNamed<Palette>(name);
+  if (!palette) throw StudioError(400, "palette: expected " + joinNamesWith(schema::namesOf<Palette>(), "or"));
+  switch (*palette) {
+    case Palette::Natural:
+      return PreviewPalette::Natural;
+    case Palette::Debug:
+      return PreviewPalette::Durability;
+    case Palette::Curvature:
+      return PreviewPalette::Curvature;
+  }
+  return PreviewPalette::Natural;
 }
 
 const char* contentType(const fs::path& file) {
@@ -275,16 +293,8 @@ int runStudio(const StudioOptions& options) {
              }));
 
   server.Get("/api/mesh", guarded([&](const httplib::Request& req, httplib::Response& res) {
-               const std::string name = req.has_param("palette") ? req.get_param_value("palette") : "natural";
-               PreviewPalette palette;
-               if (name == "natural")
-                 palette = PreviewPalette::Natural;
-               else if (name == "debug" || name == "durability")
-                 palette = PreviewPalette::Durability;
-               else if (name == "curvature")
-                 palette = PreviewPalette::Curvature;
-               else
-                 throw StudioError(400, "palette: expected natural, debug or curvature");
+               const PreviewPalette palette =
+                   previewPalette(req.has_param("palette") ? req.get_param_value("palette") : "natural");
                auto& cached = mesh_cache[int(palette)];
                if (!cached.second || cached.first != session.rockVersion())
                  cached = {session.rockVersion(), std::make_shared<const std::string>(session.previewMesh(palette))};

@@ -19,8 +19,11 @@
 #include "mesh/extract_surfaces.h"
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
+#include "preset/keyframe_edit.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "preset/schema.h"
+#include "preset/yaml_text.h"
 #include "sim/grid_layout.h"
 #include "sim/shapes.h"
 
@@ -42,13 +45,6 @@ std::string readText(const fs::path& file) {
   text << in.rdbuf();
   return text.str();
 }
-
-// The keyframe parts a studio edit touches.
-struct Parts {
-  std::optional<DurabilityGraph> graph;
-  std::optional<std::vector<BubbleBand>> bubbles;
-  std::optional<ResponseParams> response;
-};
 
 // A JSON value as a YAML node. Numbers are written in their shortest exact
 // form, so a saved keyframe time reads back as the same double.
@@ -92,10 +88,6 @@ json graphJson(const Preset& p, const DurabilityGraph& graph) {
   json out = {{"points", d["points"]}};
   if (!graph.noise.empty()) out["noise"] = d["noise"];
   return out;
-}
-
-bool sameTime(double a, double b, double h) {
-  return std::abs(a - b) <= 1e-9 * h;
 }
 
 void appendU32(std::string& out, std::uint32_t v) {
@@ -214,76 +206,62 @@ void StudioSession::runUntil(double t) {
   seek(t);
 }
 
-void StudioSession::edit(const json& part) {
+// The edit's keys as --set overrides of the preset file (the studio's API, docs/studio.md): the
+// keyframed keys of the schema (schema::keyframedKeys) by their top-level name; a graph edit gives
+// its points, and its noise or none.
+std::vector<std::string> StudioSession::editOverrides(const json& part, PresetOverrides& overrides) const {
+  const std::vector<std::string> editable = schema::keyframedKeys();
+  std::vector<std::string> tops, under_durability;
+  for (const auto& path : editable) {
+    const std::string top = path.substr(0, path.find('.'));
+    if (std::find(tops.begin(), tops.end(), top) == tops.end()) tops.push_back(top);
+    if (path.rfind("durability.", 0) == 0) under_durability.push_back(path.substr(std::strlen("durability.")));
+  }
   if (!part.is_object() || part.empty())
-    throw StudioError(400, "an edit is a JSON object with any of durability, bubbles and response");
-  PresetOverrides overrides;
-  overrides.resolution = resolution_;
+    throw StudioError(400, "an edit is a JSON object with any of " + joinNamesWith(tops, "and"));
+  std::vector<std::string> paths;
   const auto set = [&](const std::string& key, const json& value) {
     overrides.sets.push_back(key + "=" + value.dump());
     overrides.set_origins.push_back("POST /api/edit " + key);
+    paths.push_back(key);
   };
   for (const auto& [key, value] : part.items()) {
     if (key == "durability") {
       if (!value.is_object() || !value.contains("points"))
         throw StudioError(400, "durability: expected {\"points\": [[altitude, durability], ...], \"noise\": [...]}");
       for (const auto& [k, v] : value.items())
-        if (k != "points" && k != "noise")
-          throw StudioError(400, "durability." + k +
-                                     ": only the graph (points, noise) can be edited in the studio; edit the "
-                                     "preset file for the rest");
+        if (std::find(under_durability.begin(), under_durability.end(), k) == under_durability.end())
+          throw StudioError(400, "durability." + k + ": only the graph (" + joinNames(under_durability) +
+                                     ") can be edited in the studio; edit the preset file for the rest");
       set("durability.points", value["points"]);
       set("durability.noise",
           value.value("noise", json::array()).is_null() ? json::array() : value.value("noise", json::array()));
-    } else if (key == "bubbles" || key == "response") {
+    } else if (std::find(editable.begin(), editable.end(), key) != editable.end()) {
       set(key, value);
     } else {
-      throw StudioError(400, "'" + key + "' cannot be edited in the studio: only durability, bubbles and response");
+      throw StudioError(400, "'" + key + "' cannot be edited in the studio: only " + joinNamesWith(tops, "and"));
     }
   }
+  return paths;
+}
+
+void StudioSession::edit(const json& part) {
+  PresetOverrides overrides;
+  overrides.resolution = resolution_;
+  const std::vector<std::string> paths = editOverrides(part, overrides);
   Preset parsed;
   try {
     parsed = parsePreset(original_text_, file_, overrides);
   } catch (const InputError& e) {
     throw StudioError(400, e.what());
   }
-  Parts parts;
-  if (part.contains("durability")) parts.graph = parsed.durability.graph;
-  if (part.contains("bubbles")) parts.bubbles = parsed.bubbles;
-  if (part.contains("response")) parts.response = parsed.response;
-
-  const double t = time();
   Preset candidate = preset_;
-  auto& keyframes = candidate.durability.keyframes;
-  if (cycle() == 0) {
-    // Time 0 edits the preset itself; every keyframe after it belonged to the old run.
-    if (parts.graph) candidate.durability.graph = *parts.graph;
-    if (parts.bubbles) candidate.bubbles = *parts.bubbles;
-    if (parts.response) candidate.response = *parts.response;
-    std::erase_if(keyframes, [&](const DurabilityKeyframe& k) { return !sameTime(k.at, 0.0, h()); });
-    for (auto& k : keyframes) {  // a keyframe at 0 would override the edit at once
-      if (parts.graph) k.graph.reset();
-      if (parts.bubbles) k.bubbles.reset();
-      if (parts.response) k.response.reset();
-    }
-    std::erase_if(keyframes, [](const DurabilityKeyframe& k) { return !k.graph && !k.bubbles && !k.response; });
+  applyKeyframeEdit(candidate, keyframeEditOf(parsed, paths), time(), h());
+  if (cycle() == 0) {  // the preset itself changed: the run starts again
     preset_ = std::move(candidate);
     restart();
     return;
   }
-  // Later: a keyframe at the current time (merged into one already there); the
-  // keyframes after it belonged to the branch left by seeking back.
-  std::erase_if(keyframes, [&](const DurabilityKeyframe& k) { return k.at > t && !sameTime(k.at, t, h()); });
-  if (keyframes.empty() || !sameTime(keyframes.back().at, t, h())) {
-    DurabilityKeyframe k;
-    k.at = t;
-    keyframes.push_back(k);
-  }
-  DurabilityKeyframe& k = keyframes.back();
-  k.at = t;
-  if (parts.graph) k.graph = *parts.graph;
-  if (parts.bubbles) k.bubbles = *parts.bubbles;
-  if (parts.response) k.response = *parts.response;
   const GridLayout now = sim_->rock().layout, then = computeGridLayout(candidate);
   if (then.margin != now.margin) {
     const double largest = (now.margin - 1) * now.h;
@@ -305,7 +283,7 @@ json StudioSession::state() const {
   std::vector<BubbleBand> bubbles = preset_.bubbles;
   ResponseParams response = preset_.response;
   for (const auto& k : preset_.durability.keyframes) {
-    if (k.at > t && !sameTime(k.at, t, h())) break;
+    if (k.at > t && !sameKeyframeTime(k.at, t, h())) break;
     if (k.graph) graph = *k.graph;
     if (k.bubbles) bubbles = *k.bubbles;
     if (k.response) response = *k.response;

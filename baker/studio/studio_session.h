@@ -25,6 +25,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inputs/resolve_shape.h"
+#include "preset/load_preset.h"
 #include "preset/preset.h"
 #include "sim/weathering.h"
 
@@ -87,6 +88,8 @@ class StudioSession {
   void restore(int cycle);
   void keepCheckpoint();
   SimParams simParams() const;
+  // Adds an edit request's keys to `overrides`; returns their key paths (StudioError 400 for others).
+  std::vector<std::string> editOverrides(const nlohmann::json& part, PresetOverrides& overrides) const;
   int cycleAt(double time) const;  // the whole cycle a time rounds up to
   std::string savedYaml(const std::string& name) const;
 

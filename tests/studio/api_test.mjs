@@ -101,7 +101,10 @@ try {
   ok((await api(url, '/api/control', { action: 'fly' })).status === 400, 'an unknown action gets 400');
   ok((await api(url, '/api/save', { name: '../evil' })).status === 400 && !fs.existsSync(path.join(dir, '..', 'evil.yaml')),
     'a save name with a path gets 400 and writes nothing');
-  ok((await api(url, '/api/mesh?palette=rainbow')).status === 400, 'an unknown palette gets 400');
+  const rainbow = await api(url, '/api/mesh?palette=rainbow');
+  ok(rainbow.status === 400 && rainbow.json.error === 'palette: expected natural, debug or curvature',
+    'an unknown palette gets 400 naming the preset\'s palettes');
+  ok((await api(url, '/api/mesh?palette=durability')).status === 200, 'durability is the debug palette\'s other name');
   await still('the bad requests');
 
   // Play runs on its own; pause stops it.

@@ -1,0 +1,95 @@
+#include "preset/preset_overrides.h"
+
+#include <algorithm>
+#include <cctype>
+#include <limits>
+#include <sstream>
+
+#include "preset/schema.h"
+
+namespace rockbake {
+namespace {
+
+std::vector<std::string> keyPathParts(const std::string& path, const auto& bad) {
+  std::vector<std::string> keys;
+  std::stringstream stream(path);
+  for (std::string key; std::getline(stream, key, '.');) {
+    if (key.empty()) bad("the key path has an empty part", "");
+    keys.push_back(key);
+  }
+  if (keys.empty()) bad("the key path is empty", "");
+  return keys;
+}
+
+// `origin` is what messages name as the override's location: "--set <argument>" by default.
+void applyOverride(YAML::Node& root, const std::string& argument, const std::string& origin, Source& source) {
+  const auto bad = [&](const std::string& problem, const std::string& hint) {
+    throw InputError({origin.empty() ? "--set" : origin}, "", "'" + argument + "': " + problem, hint);
+  };
+  const std::size_t equals = argument.find('=');
+  if (equals == std::string::npos || equals == 0)
+    bad("expected key.path=VALUE", "for example --set colluvium.yield=0.3 or --set bubbles.0.spheroidal=0.5");
+  const std::string path = argument.substr(0, equals);
+  YAML::Node value;
+  try {
+    value = YAML::Load(argument.substr(equals + 1));
+  } catch (const YAML::Exception& e) {
+    bad("the value is not valid YAML: " + e.msg, "");
+  }
+  const std::vector<std::string> keys = keyPathParts(path, bad);
+
+  YAML::Node node;
+  node.reset(root);
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string& key = keys[i];
+    const bool last = i + 1 == keys.size();
+    YAML::Node next;
+    if (node.IsSequence()) {
+      const bool digits = std::all_of(key.begin(), key.end(), [](unsigned char c) { return std::isdigit(c); });
+      std::size_t index = std::numeric_limits<std::size_t>::max();
+      if (!digits) bad("'" + key + "' must be a list index (0, 1, ...) at that point", "");
+      try {
+        index = std::stoul(key);
+      } catch (const std::out_of_range&) {
+        // leave it past the end
+      }
+      if (index >= node.size())
+        bad("index " + key + " is past the end of a list of " + std::to_string(node.size()), "");
+      if (last) {
+        node[index] = value;
+        break;
+      }
+      next.reset(node[index]);
+    } else {
+      if (!node.IsMap() && !node.IsNull()) bad("'" + key + "' cannot be set inside a value that is not a map", "");
+      if (last) {
+        node[key] = value;
+        // Choosing one of a set of alternatives (`cycles` for `time`) replaces the others.
+        for (const auto& other : schema::siblingsReplacedBy(path)) node.remove(other);
+        break;
+      }
+      if (!node[key].IsDefined() || node[key].IsNull()) node[key] = YAML::Node(YAML::NodeType::Map);
+      next.reset(node[key]);
+    }
+    node.reset(next);
+  }
+  source.overrides.emplace_back(path, origin.empty() ? "--set " + argument : origin);
+}
+
+}  // namespace
+
+void applyOverrides(YAML::Node& root, const PresetOverrides& overrides, Source& source) {
+  for (std::size_t i = 0; i < overrides.sets.size(); ++i)
+    applyOverride(root, overrides.sets[i], i < overrides.set_origins.size() ? overrides.set_origins[i] : "", source);
+  if (overrides.seed) {
+    root["seed"] = *overrides.seed;
+    source.overrides.emplace_back("seed", "--seed " + std::to_string(*overrides.seed));
+  }
+  if (overrides.resolution) {
+    if (!root["grid"].IsDefined() || root["grid"].IsNull()) root["grid"] = YAML::Node(YAML::NodeType::Map);
+    if (root["grid"].IsMap()) root["grid"]["resolution"] = *overrides.resolution;
+    source.overrides.emplace_back("grid.resolution", "--resolution " + std::to_string(*overrides.resolution));
+  }
+}
+
+}  // namespace rockbake
