@@ -10,7 +10,7 @@
 //               applied to the source normal, normalised, stored as (c + 1) / 2 (OpenGL, +Y up)
 //   base colour RGB 8-bit sRGB: the source's interpolated palette colour times the rock's
 //               look at the hit (rock_look.h)
-//   ORM         RGB 8-bit linear: R occlusion (ambient_occlusion.h, interpolated at the hit),
+//   ORM         RGB 8-bit linear: R occlusion (ambient_occlusion.h, per LOD vertex, interpolated),
 //               G roughness (rock_look.h), B metal 0
 //   height      1 channel float: the signed distance from the LOD to the source along the
 //               LOD's normal, world units (positive outwards); LOD0's is the film displacement
@@ -49,7 +49,7 @@ struct LodBake {
 
 TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake);
 TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& look);
-// `occlusion`: vertexOcclusion of the source.
+// `occlusion`: vertexOcclusion of bake.lod.
 TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::vector<float>, 2>& occlusion,
                                    const RockLook& look);
 TextureImage<float> bakeHeight(const LodBake& bake);

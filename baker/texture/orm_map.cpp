@@ -18,7 +18,7 @@ TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::ve
     const float cover = s.surface == 1 ? 1.0f : attributes ? float(at.scalar(m.colluvium)) : 0.0f;
     const float durability = attributes ? float(at.scalar(m.durability)) : 0.0f;
     const std::vector<float>& open = occlusion[std::size_t(s.surface)];
-    out[0] = byte(s.hit && open.size() == m.positions.size() ? at.scalar(open) : 1.0);
+    out[0] = byte(open.size() == s.lod.mesh->positions.size() ? s.lod.scalar(open) : 1.0);
     out[1] = byte(look.roughness(at.vector(m.positions), durability, cover));
     out[2] = 0;
   });

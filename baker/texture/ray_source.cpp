@@ -27,30 +27,36 @@ struct RaySource::Scene {
 
 namespace {
 
-// rtcIntersect1's context, carrying the query: which surface, and the nearest hit accepted
-// so far with its triangle (for the tie rule).
+constexpr int kLanes = RaySource::kPacket;
+
+// The intersect calls' context, carrying each lane's query: which surface, and the nearest
+// hit accepted so far with its triangle (for the tie rule).
 struct QueryContext {
   RTCIntersectContext base;
-  unsigned surface_geometry;
-  float best_t;
-  unsigned best_triangle;
+  unsigned surface_geometry[kLanes];
+  float best_t[kLanes];
+  unsigned best_triangle[kLanes];
 };
 
 // Accepts a candidate only on the asked-for surface, and at a distance equal to the best so
-// far only with a lower triangle index. Embree sets tfar to the candidate's distance before
-// the call (and restores it on a rejection).
+// far only with a lower triangle index. Embree sets a lane's tfar to the candidate's distance
+// before the call (and restores it on a rejection); a single ray is lane 0, a packet's ray
+// is its lane, one at a time or several at once.
 void tieBreak(const RTCFilterFunctionNArguments* args) {
   auto* query = reinterpret_cast<QueryContext*>(args->context);
-  const unsigned geometry = RTCHitN_geomID(args->hit, args->N, 0);
-  const unsigned triangle = RTCHitN_primID(args->hit, args->N, 0);
-  const float t = RTCRayN_tfar(args->ray, args->N, 0);
-  if (geometry != query->surface_geometry ||
-      !(t < query->best_t || (t == query->best_t && triangle < query->best_triangle))) {
-    args->valid[0] = 0;
-    return;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned geometry = RTCHitN_geomID(args->hit, args->N, i);
+    const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    if (geometry != query->surface_geometry[i] ||
+        !(t < query->best_t[i] || (t == query->best_t[i] && triangle < query->best_triangle[i]))) {
+      args->valid[i] = 0;
+      continue;
+    }
+    query->best_t[i] = t;
+    query->best_triangle[i] = triangle;
   }
-  query->best_t = t;
-  query->best_triangle = triangle;
 }
 
 [[noreturn]] void fail(RTCDevice device, const char* what) {
@@ -126,9 +132,9 @@ SourceHit RaySource::nearestAlong(int surface, const std::array<float, 3>& origi
     QueryContext query;
     rtcInitIntersectContext(&query.base);
     query.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    query.surface_geometry = s.geometry[surface];
-    query.best_t = std::numeric_limits<float>::infinity();
-    query.best_triangle = RTC_INVALID_GEOMETRY_ID;
+    query.surface_geometry[0] = s.geometry[surface];
+    query.best_t[0] = std::numeric_limits<float>::infinity();
+    query.best_triangle[0] = RTC_INVALID_GEOMETRY_ID;
     RTCRayHit rh;
     rh.ray.org_x = origin[0] - sign * eps * direction[0];
     rh.ray.org_y = origin[1] - sign * eps * direction[1];
@@ -152,21 +158,81 @@ SourceHit RaySource::nearestAlong(int surface, const std::array<float, 3>& origi
   return best;
 }
 
-bool RaySource::occluded(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float start,
-                         float reach) const {
+void RaySource::nearestAlong(int count, const int* surface, const std::array<float, 3>* origin,
+                             const std::array<float, 3>* direction, float reach, SourceHit* hits) const {
+  const Scene& s = *scene_;
+  const float eps = s.epsilon;
+  alignas(32) int valid[kLanes];
+  float limit[kLanes];
+  for (int i = 0; i < kLanes; ++i) {
+    const bool live =
+        i < count && surface[i] >= 0 && surface[i] <= 1 && s.geometry[surface[i]] != RTC_INVALID_GEOMETRY_ID;
+    valid[i] = live ? -1 : 0;
+    limit[i] = reach;
+    if (i < count) hits[i] = SourceHit{};
+  }
+  // Ahead first; behind only closer than what ahead found (ahead wins a tie).
+  for (int way = 0; way < 2; ++way) {
+    const float sign = way == 0 ? 1.0f : -1.0f;
+    QueryContext query;
+    rtcInitIntersectContext(&query.base);
+    query.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) RTCRayHit8 rh;
+    for (int i = 0; i < kLanes; ++i) {
+      query.surface_geometry[i] = s.geometry[valid[i] ? surface[i] : 0];
+      query.best_t[i] = std::numeric_limits<float>::infinity();
+      query.best_triangle[i] = RTC_INVALID_GEOMETRY_ID;
+      const std::array<float, 3> o = i < count ? origin[i] : std::array<float, 3>{0, 0, 0};
+      const std::array<float, 3> d = i < count ? direction[i] : std::array<float, 3>{0, 0, 1};
+      rh.ray.org_x[i] = o[0] - sign * eps * d[0];
+      rh.ray.org_y[i] = o[1] - sign * eps * d[1];
+      rh.ray.org_z[i] = o[2] - sign * eps * d[2];
+      rh.ray.dir_x[i] = sign * d[0];
+      rh.ray.dir_y[i] = sign * d[1];
+      rh.ray.dir_z[i] = sign * d[2];
+      rh.ray.tnear[i] = 0.0f;
+      rh.ray.tfar[i] = way == 0 ? limit[i] + eps : std::nextafter(limit[i] + eps, 0.0f);
+      rh.ray.mask[i] = 0xffffffffu;
+      rh.ray.time[i] = 0.0f;
+      rh.ray.flags[i] = 0;
+      rh.ray.id[i] = unsigned(i);
+      rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, s.scene, &query.base, &rh);
+    for (int i = 0; i < count; ++i) {
+      if (!valid[i] || rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+      const float distance = rh.ray.tfar[i] - eps;
+      hits[i] = {true, rh.hit.primID[i], rh.hit.u[i], rh.hit.v[i], sign * distance};
+      limit[i] = std::max(distance, 0.0f);
+    }
+  }
+}
+
+int RaySource::occludedCount(const std::array<float, 3>& origin, int count, const std::array<float, 3>* directions,
+                             float start, float reach) const {
   const Scene& s = *scene_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray;
-  ray.org_x = origin[0], ray.org_y = origin[1], ray.org_z = origin[2];
-  ray.dir_x = direction[0], ray.dir_y = direction[1], ray.dir_z = direction[2];
-  ray.tnear = start;
-  ray.tfar = reach;
-  ray.mask = 0xffffffffu;
-  ray.time = 0.0f;
-  ray.flags = 0;
-  rtcOccluded1(s.scene, &context, &ray);
-  return ray.tfar < 0.0f;  // Embree marks an occluded ray with tfar = −inf
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) int valid[kLanes];
+  alignas(32) RTCRay8 ray;
+  for (int i = 0; i < kLanes; ++i) {
+    valid[i] = i < count ? -1 : 0;
+    const std::array<float, 3> d = i < count ? directions[i] : std::array<float, 3>{0, 0, 1};
+    ray.org_x[i] = origin[0], ray.org_y[i] = origin[1], ray.org_z[i] = origin[2];
+    ray.dir_x[i] = d[0], ray.dir_y[i] = d[1], ray.dir_z[i] = d[2];
+    ray.tnear[i] = start;
+    ray.tfar[i] = reach;
+    ray.mask[i] = 0xffffffffu;
+    ray.time[i] = 0.0f;
+    ray.flags[i] = 0;
+    ray.id[i] = unsigned(i);
+  }
+  rtcOccluded8(valid, s.scene, &context, &ray);
+  int occluded = 0;
+  for (int i = 0; i < count; ++i) occluded += ray.tfar[i] < 0.0f;
+  return occluded;
 }
 
 }  // namespace rockbake

@@ -36,10 +36,19 @@ class RaySource {
   SourceHit nearestAlong(int surface, const std::array<float, 3>& origin, const std::array<float, 3>& direction,
                          float reach) const;
 
-  // Whether either surface lies along the ray from `origin` (unit `direction`) within
-  // (start, reach].
-  bool occluded(const std::array<float, 3>& origin, const std::array<float, 3>& direction, float start,
-                float reach) const;
+  // nearestAlong for up to kPacket queries at once, traced together as one Embree packet
+  // (neighbouring texels' rays run alike, and a packet walks the tree once for all of them).
+  // Query i: surface[i], origin[i], direction[i]; count <= kPacket. A query's answer may differ
+  // from nearestAlong's in the last bits of its distance (the packet's arithmetic), never with
+  // the thread count.
+  static constexpr int kPacket = 8;
+  void nearestAlong(int count, const int* surface, const std::array<float, 3>* origin,
+                    const std::array<float, 3>* direction, float reach, SourceHit* hits) const;
+
+  // How many of `count` (<= kPacket) rays from `origin` (unit directions) meet either
+  // surface within (start, reach], traced as one packet.
+  int occludedCount(const std::array<float, 3>& origin, int count, const std::array<float, 3>* directions, float start,
+                    float reach) const;
 
   // Half the bounding-box diagonal of both surfaces, world units.
   double radius() const;

@@ -5,7 +5,7 @@
 //   <name>_ORM.png             8-bit RGB, linear (no colour chunk: data, not colour)
 //   <name>_Mask.png            8-bit RGBA, linear
 //   <name>_Height.exr          32-bit float, one channel "Y", ZIP-compressed, world units
-// PNGs are compressed for speed (zlib level 1, the Up filter); any PNG reader reads them.
+// PNGs are compressed for speed, in parallel bands (png_encoder.h); any PNG reader reads them.
 #pragma once
 
 #include <cstdint>

@@ -42,8 +42,29 @@ TexelHits traceTexels(const AssetMeshes& lod, const TexelMap& texels, const RayS
   }
   out.hits.resize(out.row_start.back());
   std::vector<std::size_t> missed(std::size_t(size), 0);
+  // Each row's covered texels in packets of RaySource::kPacket, neighbours traced together.
   tbb::parallel_for(0, size, [&](int y) {
+    constexpr int kPacket = RaySource::kPacket;
+    int surface[kPacket];
+    std::array<float, 3> origin[kPacket], direction[kPacket];
+    SourceHit found[kPacket];
     std::size_t k = out.row_start[std::size_t(y)];
+    int lanes = 0;
+    const auto flush = [&] {
+      source.nearestAlong(lanes, surface, origin, direction, float(cage), found);
+      for (int i = 0; i < lanes; ++i) {
+        TexelHit& h = out.hits[k++];
+        if (!found[i].hit) {
+          ++missed[std::size_t(y)];
+          continue;
+        }
+        h.triangle = found[i].triangle;
+        h.u = std::uint16_t(std::lround(std::clamp(found[i].u, 0.0f, 1.0f) * 65535.0f));
+        h.v = std::uint16_t(std::lround(std::clamp(found[i].v, 0.0f, 1.0f) * 65535.0f));
+        h.distance = found[i].distance;
+      }
+      lanes = 0;
+    };
     for (int x = 0; x < size; ++x) {
       const std::uint32_t t = texels.texels[std::size_t(y) * std::size_t(size) + std::size_t(x)];
       if (t == kEmptyTexel || (t & kDilatedTexel)) continue;
@@ -57,18 +78,12 @@ TexelHits traceTexels(const AssetMeshes& lod, const TexelMap& texels, const RayS
         n = add(n, scale(toV3(m.normals[tri[i]]), w[i]));
       }
       n = normalized(n);
-      const SourceHit hit = source.nearestAlong(ref.surface, {float(p[0]), float(p[1]), float(p[2])},
-                                                {float(n[0]), float(n[1]), float(n[2])}, float(cage));
-      TexelHit& h = out.hits[k++];
-      if (!hit.hit) {
-        ++missed[std::size_t(y)];
-        continue;
-      }
-      h.triangle = hit.triangle;
-      h.u = std::uint16_t(std::lround(std::clamp(hit.u, 0.0f, 1.0f) * 65535.0f));
-      h.v = std::uint16_t(std::lround(std::clamp(hit.v, 0.0f, 1.0f) * 65535.0f));
-      h.distance = hit.distance;
+      surface[lanes] = ref.surface;
+      origin[lanes] = {float(p[0]), float(p[1]), float(p[2])};
+      direction[lanes] = {float(n[0]), float(n[1]), float(n[2])};
+      if (++lanes == kPacket) flush();
     }
+    if (lanes > 0) flush();
   });
   for (std::size_t m : missed) out.missed += m;
   return out;

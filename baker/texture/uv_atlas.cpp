@@ -1,6 +1,7 @@
 #include "texture/uv_atlas.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 #include <utility>
 
@@ -126,6 +127,30 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
     if (!surfaces[s]->triangles.empty()) *out[s] = splitAlongSeams(*surfaces[s], charts, uv, index);
   }
   return atlas;
+}
+
+double texelDensity(const AssetMeshes& meshes, int size) {
+  using namespace texture_detail;
+  std::vector<std::pair<double, double>> density;  // (texels per unit, area)
+  double total = 0;
+  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
+    if (m->uvs.size() != m->positions.size()) continue;
+    for (const auto& t : m->triangles) {
+      const V3 a = toV3(m->positions[t[0]]), b = toV3(m->positions[t[1]]), c = toV3(m->positions[t[2]]);
+      const double area = 0.5 * length(cross(sub(b, a), sub(c, a)));
+      const auto &p = m->uvs[t[0]], &q = m->uvs[t[1]], &r = m->uvs[t[2]];
+      const double uv =
+          0.5 * std::abs((double(q[0]) - p[0]) * (double(r[1]) - p[1]) - (double(q[1]) - p[1]) * (double(r[0]) - p[0]));
+      if (area <= 0) continue;
+      density.emplace_back(size * std::sqrt(uv / area), area);
+      total += area;
+    }
+  }
+  std::sort(density.begin(), density.end());
+  double sum = 0;
+  for (const auto& [d, area] : density)
+    if ((sum += area) >= 0.5 * total) return d;
+  return 0.0;
 }
 
 }  // namespace rockbake

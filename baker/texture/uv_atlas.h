@@ -29,4 +29,8 @@ struct UvAtlas {
 // std::runtime_error when the charts do not fit the map at any density.
 UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params);
 
+// The texel density of meshes with uvs in a `size`² map: the area-weighted median over the
+// triangles of sqrt(texel area / surface area), texels per world unit (0 without area).
+double texelDensity(const AssetMeshes& meshes, int size);
+
 }  // namespace rockbake

@@ -222,9 +222,9 @@ TEST(Occlusion, CreviceDarkerThanConvexTopOpenPlaneNearOne) {
   const RaySource rays(spheres);
   TextureParams params;
   params.ao_rays = 64;
-  const auto occlusion = vertexOcclusion(spheres, rays, params);
   const int size = 512;
   const Baked b = prepare(spheres, spheres, rays, size, 0.05);
+  const auto occlusion = vertexOcclusion(b.atlas.meshes, rays, params);
   const RockLook look(1, rays.radius(), 0.0, {0.0f, 1.0f});
   const TextureImage<std::uint8_t> orm = bakeOrm(b.bake(), occlusion, look);
   // The texels nearest a point in the crevice and the left sphere's outer pole.
@@ -258,8 +258,8 @@ TEST(Occlusion, CreviceDarkerThanConvexTopOpenPlaneNearOne) {
     }
   const AssetMeshes plane = test::assetOf(test::surfaceOf(p, t));
   const RaySource plane_rays(plane);
-  const auto open = vertexOcclusion(plane, plane_rays, params);
   const Baked pb = prepare(plane, plane, plane_rays, 256, 0.05);
+  const auto open = vertexOcclusion(pb.atlas.meshes, plane_rays, params);
   const TextureImage<std::uint8_t> plane_orm = bakeOrm(pb.bake(), open, look);
   for (std::size_t i = 0; i < plane_orm.pixels.size(); i += 3) ASSERT_EQ(plane_orm.pixels[i], 255);
 }
@@ -323,6 +323,51 @@ PngHeader readPngHeader(const std::filesystem::path& file) {
   return h;
 }
 
+// Every sample of a PNG, as libpng reads it (16-bit in the host's order).
+std::vector<std::uint16_t> readPngSamples(const std::filesystem::path& file, int& size, int& channels) {
+  std::vector<std::uint16_t> samples;
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return samples;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (!setjmp(png_jmpbuf(png))) {
+    png_init_io(png, f);
+    png_read_png(png, info, PNG_TRANSFORM_SWAP_ENDIAN, nullptr);
+    size = int(png_get_image_width(png, info));
+    channels = png_get_channels(png, info);
+    const int depth = png_get_bit_depth(png, info);
+    png_bytepp rows = png_get_rows(png, info);
+    for (int y = 0; y < int(png_get_image_height(png, info)); ++y)
+      for (int i = 0; i < size * channels; ++i)
+        samples.push_back(depth == 16 ? reinterpret_cast<const std::uint16_t*>(rows[y])[i] : rows[y][i]);
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return samples;
+}
+
+TEST(TextureFiles, PngsReadBackSampleForSample) {
+  // Noise with structure, so every band compresses differently; 300 rows is not a multiple of
+  // the encoder's bands.
+  const int size = 300;
+  TextureImage<std::uint16_t> normal{size, 3, std::vector<std::uint16_t>(std::size_t(size) * size * 3)};
+  TextureImage<std::uint8_t> mask{size, 4, std::vector<std::uint8_t>(std::size_t(size) * size * 4)};
+  for (std::size_t i = 0; i < normal.pixels.size(); ++i) normal.pixels[i] = std::uint16_t(i * 2654435761u >> 13);
+  for (std::size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] = std::uint8_t((i / 7) ^ (i * 40503u >> 9));
+  test::TempDir dir;
+  writeTexturePng(dir.path() / "n.png", normal);
+  writeTexturePng(dir.path() / "m.png", mask, false);
+  int read_size = 0, channels = 0;
+  std::vector<std::uint16_t> samples = readPngSamples(dir.path() / "n.png", read_size, channels);
+  EXPECT_EQ(read_size, size);
+  EXPECT_EQ(channels, 3);
+  EXPECT_EQ(samples, normal.pixels);
+  samples = readPngSamples(dir.path() / "m.png", read_size, channels);
+  EXPECT_EQ(channels, 4);
+  ASSERT_EQ(samples.size(), mask.pixels.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) ASSERT_EQ(samples[i], mask.pixels[i]) << i;
+}
+
 TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   const AssetMeshes& source = test::weatheredRock().meshes;
   std::vector<AssetMeshes> lods{source};
@@ -336,11 +381,11 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   TextureSet sets[2];
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    sets[0] = bakeTextureSet(lods, source, params, "small", one.path());
+    sets[0] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", one.path());
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    sets[1] = bakeTextureSet(lods, source, params, "small", two.path());
+    sets[1] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", two.path());
   }
   // LOD0: five maps; LOD1: all but the height.
   ASSERT_EQ(sets[0].files.size(), 9u);
