@@ -386,6 +386,7 @@ int main(int argc, char** argv) {
       if (shared) {
         const UvAtlas atlas = buildUvAtlas(asset.lods[0], params);
         atlas_s = clock.lap();
+        std::printf("LOD0 atlas: %zu charts\n", atlas.charts);
         chain = sharedChain(atlas.meshes, preset.mesh.lods);
         chain_s = clock.lap();
       }

@@ -34,13 +34,11 @@ find_package(TinyGLTF REQUIRED)
 find_package(meshoptimizer REQUIRED)
 
 # The texture stage (docs/textures.md): Embree 3 casts the bake's rays, Eigen's sparse
-# Cholesky solves each chart's LSCM system, stb_rect_pack (libstb-dev, header only: the
-# implementation is compiled into texture/pack_charts.cpp) packs the charts.
-# zlib compresses the maps' PNGs in parallel bands (texture/png_encoder.h).
+# Cholesky solves each chart's LSCM system, zlib compresses the maps' PNGs in parallel
+# bands (texture/png_encoder.h).
 find_package(embree 3 REQUIRED)
-find_package(ZLIB REQUIRED)
 find_package(Eigen3 REQUIRED NO_MODULE)
-find_path(STB_INCLUDE_DIR stb/stb_rect_pack.h REQUIRED)
+find_package(ZLIB REQUIRED)
 
 if(ROCKBAKE_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -9,9 +9,9 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libpng-dev libssl-dev libfreetype-dev fonts-dejavu-core
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
   libtinygltf-dev libmeshoptimizer-dev
-  # The texture stage: ray casts (Embree 3), sparse solvers for UV charts (Eigen), chart packing
-  # (stb_rect_pack), the maps' PNGs compressed in parallel (zlib).
-  libembree-dev libeigen3-dev libstb-dev zlib1g-dev
+  # The texture stage: ray casts (Embree 3), sparse solvers for UV charts (Eigen), the maps'
+  # PNGs compressed in parallel (zlib).
+  libembree-dev libeigen3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
   # The fuzzers (fuzz/, scripts/fuzz.sh) and the sanitizer preset: clang 14 with libFuzzer and the

@@ -109,12 +109,14 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
   std::array<std::vector<FlatChart>, 2> flat;
   for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
 
-  std::vector<std::vector<std::array<double, 2>>> uv;
+  std::vector<PackChart> packed;
   for (auto& charts : flat)
-    for (auto& c : charts) uv.push_back(c.uv.uv);
+    for (auto& c : charts) packed.push_back({c.uv.uv, c.uv.corners});
   UvAtlas atlas;
-  atlas.charts = uv.size();
-  atlas.texels_per_unit = packCharts(uv, params.size, params.padding);
+  atlas.charts = packed.size();
+  atlas.texels_per_unit = packCharts(packed, params.size, params.padding);
+  std::vector<std::vector<std::array<double, 2>>> uv;
+  for (PackChart& c : packed) uv.push_back(std::move(c.uv));
 
   atlas.meshes = meshes;
   std::array<SurfaceMesh*, 2> out{&atlas.meshes.rock, &atlas.meshes.colluvium};
