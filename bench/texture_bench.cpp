@@ -1,12 +1,20 @@
 // The texture stage on a real asset (docs/textures.md; figures in bench/README.md).
 //
-//   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--dump DIR]
+//   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--layout shared|own]
+//                          [--out DIR] [--dump] [--no-fidelity]
 //
 // Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
 // stage's functions, keeping the bake source (the refined surface before simplification) and
-// the LODs the current pipeline makes, then for every LOD times the atlas, and reports the UV
-// targets: contested texels, atlas use and texel-density spread. With --dump, writes each
-// LOD's atlas (charts in colours) as PNGs into DIR.
+// the LODs the current pipeline makes. Then, for each LOD layout (default both): "shared", the
+// LOD chain simplified from LOD0 after its atlas with the seams kept (meshoptimizer, as the
+// mesh stage will), or "own", every LOD of the current pipeline unwrapped on its own; bakes the
+// texture set at 1 and 2 threads (default both; files compared byte for byte) into
+// DIR/<layout>/threads<N>, printing each step's wall and CPU seconds and the memory the set
+// added (peak RSS during it over RSS before). Per LOD it reports the UV targets (texels
+// claimed by two triangles, atlas use, share of the surface within 2x of the median texel
+// density) and, unless --no-fidelity, the normal fidelity: the mean angle between LOD0's
+// normal and the LOD's, geometry alone and decoded from the written PNGs by glTF's rules in
+// this file's own code. --dump writes each LOD's atlas, charts in colours, into DIR/<layout>.
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -258,16 +266,48 @@ double angle(const V& a, const V& b) {
 }
 
 struct Fidelity {
-  double geometry = 0, mapped = 0;  // mean angle to LOD0's normal, degrees
+  // Mean angle, degrees, between LOD0's normal and the LOD's: geometry alone (interpolated
+  // NORMAL), the LOD's map decoded against LOD0's geometry, and both with their maps.
+  double geometry = 0, mapped = 0, both_mapped = 0;
 };
 
-// Over LOD k's covered texels: the angle between LOD0's normal (where the line along LOD k's
-// normal meets LOD0) and LOD k's shading normal, without the map and with the map decoded by
-// glTF's rules (n = normalize(x·T + y·B + z·N), B = cross(N, T)·w, interpolated, normalised).
+// A surface's shading at barycentrics w of a triangle: its interpolated NORMAL and, with a map,
+// the normal decoded from the map's texel at the interpolated uv by glTF's rules
+// (n = normalize(x·T + y·B + z·N), B = cross(N, T)·w, each interpolated and normalised).
+struct Shading {
+  V geometry, decoded;
+};
+Shading shade(const SurfaceMesh& m, std::uint32_t triangle, const double w[3], const std::vector<std::uint16_t>& map,
+              int size) {
+  V n{0, 0, 0}, t{0, 0, 0}, b{0, 0, 0};
+  double u = 0, v = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::uint32_t i = m.triangles[triangle][c];
+    const V vn{m.normals[i][0], m.normals[i][1], m.normals[i][2]};
+    const V vt{m.tangents[i][0], m.tangents[i][1], m.tangents[i][2]};
+    const V vb = cross(vn, vt);
+    for (int k = 0; k < 3; ++k) {
+      n[k] += w[c] * vn[k];
+      t[k] += w[c] * vt[k];
+      b[k] += w[c] * vb[k] * m.tangents[i][3];
+    }
+    u += w[c] * m.uvs[i][0], v += w[c] * m.uvs[i][1];
+  }
+  n = unit(n), t = unit(t), b = unit(b);
+  const int x = std::clamp(int(u * size), 0, size - 1), y = std::clamp(int(v * size), 0, size - 1);
+  const std::uint16_t* texel = &map[(std::size_t(y) * std::size_t(size) + std::size_t(x)) * 3];
+  V d;
+  for (int k = 0; k < 3; ++k) d[k] = texel[k] / 65535.0 * 2.0 - 1.0;
+  V decoded;
+  for (int k = 0; k < 3; ++k) decoded[k] = d[0] * t[k] + d[1] * b[k] + d[2] * n[k];
+  return {n, unit(decoded)};
+}
+
+// Over LOD k's covered texels, against LOD0 where the line along LOD k's normal meets it.
 Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map, int size, const AssetMeshes& lod0,
-                  const RaySource& lod0_rays, double reach) {
+                  const std::vector<std::uint16_t>& lod0_map, const RaySource& lod0_rays, double reach) {
   const TexelMap texels = rasterizeUv(lod, size);
-  double geometry = 0, mapped = 0;
+  Fidelity sum;
   std::size_t count = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
@@ -276,38 +316,38 @@ Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map,
       const TriangleRef ref = triangleRef(lod, texels.texels[i]);
       const SurfaceMesh& m = ref.surface == 0 ? lod.rock : lod.colluvium;
       const auto w = texelBarycentrics(m, ref.triangle, x, y, size);
-      V p{0, 0, 0}, n{0, 0, 0}, t{0, 0, 0}, b{0, 0, 0};
-      for (int c = 0; c < 3; ++c) {
-        const std::uint32_t v = m.triangles[ref.triangle][c];
-        const V vn{m.normals[v][0], m.normals[v][1], m.normals[v][2]};
-        const V vt{m.tangents[v][0], m.tangents[v][1], m.tangents[v][2]};
-        const V vb = cross(vn, vt);
-        for (int k = 0; k < 3; ++k) {
-          p[k] += w[c] * m.positions[v][k];
-          n[k] += w[c] * vn[k];
-          t[k] += w[c] * vt[k];
-          b[k] += w[c] * vb[k] * m.tangents[v][3];
-        }
-      }
-      n = unit(n), t = unit(t), b = unit(b);
+      const double weights[3] = {w[0], w[1], w[2]};
+      const Shading here = shade(m, ref.triangle, weights, map, size);
+      V p{0, 0, 0};
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) p[k] += w[c] * m.positions[m.triangles[ref.triangle][c]][k];
+      const V& n = here.geometry;
       const SourceHit hit = lod0_rays.nearestAlong(ref.surface, {float(p[0]), float(p[1]), float(p[2])},
                                                    {float(n[0]), float(n[1]), float(n[2])}, float(reach));
       if (!hit.hit) continue;
-      const SurfaceMesh& m0 = ref.surface == 0 ? lod0.rock : lod0.colluvium;
-      const auto& tri = m0.triangles[hit.triangle];
       const double w0[3] = {1.0 - hit.u - hit.v, hit.u, hit.v};
-      V n0{0, 0, 0};
-      for (int c = 0; c < 3; ++c)
-        for (int k = 0; k < 3; ++k) n0[k] += w0[c] * m0.normals[tri[c]][k];
-      V d;
-      for (int k = 0; k < 3; ++k) d[k] = map[3 * i + k] / 65535.0 * 2.0 - 1.0;
-      V decoded;
-      for (int k = 0; k < 3; ++k) decoded[k] = d[0] * t[k] + d[1] * b[k] + d[2] * n[k];
-      geometry += angle(n, n0);
-      mapped += angle(decoded, n0);
+      const Shading there = shade(ref.surface == 0 ? lod0.rock : lod0.colluvium, hit.triangle, w0, lod0_map, size);
+      sum.geometry += angle(here.geometry, there.geometry);
+      sum.mapped += angle(here.decoded, there.geometry);
+      sum.both_mapped += angle(here.decoded, there.decoded);
       ++count;
     }
-  return {geometry / double(std::max<std::size_t>(count, 1)), mapped / double(std::max<std::size_t>(count, 1))};
+  const double n = double(std::max<std::size_t>(count, 1));
+  return {sum.geometry / n, sum.mapped / n, sum.both_mapped / n};
+}
+
+// A /proc/self/status field in MiB ("VmRSS", "VmHWM").
+double statusMiB(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(std::string(field) + ":", 0) == 0) return std::stod(line.substr(std::strlen(field) + 1)) / 1024.0;
+  return 0.0;
+}
+
+// Starts the peak-memory count afresh (Linux: clear_refs 5 resets VmHWM to the current RSS).
+void resetPeakMemory() {
+  std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 // User and system CPU seconds of the whole process so far (all threads).
@@ -334,6 +374,7 @@ int main(int argc, char** argv) {
   bool dump = false;
   std::vector<int> thread_counts{1, 2};
   std::vector<std::string> layouts{"shared", "own"};
+  bool fidelity_figures = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -347,6 +388,8 @@ int main(int argc, char** argv) {
       dump = true;
     else if (a == "--threads")
       thread_counts = {std::stoi(next())};
+    else if (a == "--no-fidelity")
+      fidelity_figures = false;
     else if (a == "--layout")
       layouts = {next()};
     else
@@ -381,6 +424,8 @@ int main(int argc, char** argv) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
       const std::filesystem::path folder = out / layout / ("threads" + std::to_string(threads));
       std::filesystem::create_directories(folder);
+      const double rss0 = statusMiB("VmRSS");
+      resetPeakMemory();
       clock.lap();
       double atlas_s = 0, chain_s = 0;
       if (shared) {
@@ -395,6 +440,8 @@ int main(int argc, char** argv) {
                                     shared ? LodLayout::SharedWithLod0 : LodLayout::OwnAtlas, params, preset.name,
                                     folder));
       const double total = clock.lap() + atlas_s, cpu = cpuSeconds() - cpu0;
+      std::printf("memory: %.0f MiB before the texture set, peak %.0f MiB during it (+%.0f MiB)\n", rss0,
+                  statusMiB("VmHWM"), statusMiB("VmHWM") - rss0);
       std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU)%s, %zu texels missed the source\n", threads,
                   total, cpu,
                   shared ? (" (LOD0 atlas " + std::to_string(atlas_s) + " s; the chain's simplification, " +
@@ -414,6 +461,8 @@ int main(int argc, char** argv) {
     const TextureSet& set = sets.back();
     const std::filesystem::path last = out / layout / ("threads" + std::to_string(thread_counts.back()));
     const RaySource lod0_rays(set.lods[0]);
+    int lod0_size = 0;
+    const auto lod0_map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, 0), lod0_size);
     for (std::size_t k = 0; k < set.lods.size(); ++k) {
       const TexelMap texels = rasterizeUv(set.lods[k], size);
       UvAtlas atlas;
@@ -421,14 +470,17 @@ int main(int argc, char** argv) {
       const UvFigures f = uvFigures(atlas, texels);
       int map_size = 0;
       const auto map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
-      const Fidelity fid = fidelity(set.lods[k], map, map_size, set.lods[0], lod0_rays, 0.1 * lod0_rays.radius());
+      const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_rays,
+                                                       0.1 * lod0_rays.radius())
+                                            : Fidelity{};
       std::printf(
           "LOD%zu: %zu triangles (target %s), %.0f texels/unit; contested %.3f %%, use %.1f %%, within 2x of "
-          "median density %.1f %%; normal vs LOD0: geometry %.2f°, mapped %.2f° (%.2f x)\n",
+          "median density %.1f %%; normal vs LOD0: geometry %.2f°, map %.2f° (%.2f x), both with maps %.2f° "
+          "(%.2f x)\n",
           k, set.lods[k].rock.triangles.size() + set.lods[k].colluvium.triangles.size(),
           k == 0 ? "-" : std::to_string(int(preset.mesh.lods[k - 1])).c_str(), set.texels_per_unit[k],
           100 * f.contested, 100 * f.use, 100 * f.within_twice_median, fid.geometry, fid.mapped,
-          fid.mapped / std::max(fid.geometry, 1e-9));
+          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9));
       if (dump) dumpAtlas(atlas, texels, out / layout / ("atlas_lod" + std::to_string(k) + ".png"));
     }
   }

@@ -2,11 +2,16 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstring>
+#include <ostream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <tbb/parallel_for.h>
+
+#include "core/atomic_file.h"
 
 namespace rockbake::texture_detail {
 namespace {
@@ -68,7 +73,7 @@ std::string deflateBand(const std::uint8_t* image, std::size_t stride, int bits,
 
 }  // namespace
 
-std::string encodePng(const void* pixels, int size, int channels, int bits, bool srgb) {
+void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb) {
   if (size <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
     throw std::runtime_error("encodePng: unsupported image");
   const std::size_t stride = std::size_t(size) * std::size_t(channels) * std::size_t(bits / 8);
@@ -80,17 +85,19 @@ std::string encodePng(const void* pixels, int size, int channels, int bits, bool
     deflated[std::size_t(b)] = deflateBand(image, stride, bits, b * kBandRows, std::min(size, (b + 1) * kBandRows),
                                            b == bands - 1, adler[std::size_t(b)]);
   });
-  std::string idat("\x78\x01", 2);  // zlib header: deflate, 32 KiB window, fastest
+  const std::string zlib_header("\x78\x01", 2);  // deflate, 32 KiB window, fastest
   std::uint32_t checksum = 1;
+  std::size_t idat_size = zlib_header.size() + 4;
   for (int b = 0; b < bands; ++b) {
-    idat += deflated[std::size_t(b)];
+    idat_size += deflated[std::size_t(b)].size();
     const int rows = std::min(size, (b + 1) * kBandRows) - b * kBandRows;
     checksum =
         std::uint32_t(adler32_combine(checksum, adler[std::size_t(b)], z_off_t(std::size_t(rows) * (stride + 1))));
   }
-  put32(idat, checksum);
+  std::string trailer;
+  put32(trailer, checksum);
 
-  std::string png("\x89PNG\r\n\x1a\n", 8);
+  std::string head("\x89PNG\r\n\x1a\n", 8);
   std::string header;
   put32(header, std::uint32_t(size));
   put32(header, std::uint32_t(size));
@@ -98,16 +105,30 @@ std::string encodePng(const void* pixels, int size, int channels, int bits, bool
   header += char(bits);
   header += kColourType[channels];
   header.append(3, '\0');  // deflate, adaptive filtering, no interlace
-  chunk(png, "IHDR", header);
+  chunk(head, "IHDR", header);
   if (srgb) {
-    chunk(png, "sRGB", std::string(1, '\0'));  // perceptual rendering intent
+    chunk(head, "sRGB", std::string(1, '\0'));  // perceptual rendering intent
     std::string gamma;
     put32(gamma, 45455);  // 1 / 2.2, for readers that know no sRGB chunk
-    chunk(png, "gAMA", gamma);
+    chunk(head, "gAMA", gamma);
   }
-  chunk(png, "IDAT", idat);
-  chunk(png, "IEND", std::string());
-  return png;
+  // One IDAT chunk, written piece by piece: its length first, its CRC over the pieces.
+  std::string idat_head;
+  put32(idat_head, std::uint32_t(idat_size));
+  idat_head += "IDAT";
+  idat_head += zlib_header;
+  auto crc = crc32(0, reinterpret_cast<const Bytef*>(idat_head.data() + 4), uInt(idat_head.size() - 4));
+  for (const std::string& band : deflated)
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(band.data()), uInt(band.size()));
+  crc = crc32(crc, reinterpret_cast<const Bytef*>(trailer.data()), uInt(trailer.size()));
+  put32(trailer, std::uint32_t(crc));
+  std::string tail;
+  chunk(tail, "IEND", std::string());
+  writeFileAtomically(file, [&](std::ostream& out) {
+    out << head << idat_head;
+    for (const std::string& band : deflated) out << band;
+    out << trailer << tail;
+  });
 }
 
 }  // namespace rockbake::texture_detail

@@ -4,18 +4,17 @@
 // filter) are cut into bands of kBandRows rows, each band deflated on its own (zlib level 1)
 // and ended with a sync flush, the last one finished, and the bands' Adler-32 checksums
 // combined. libpng compresses on one thread only, and a 16-bit 2048² normal map takes it
-// most of a second. The bytes depend only on the pixels (the bands are fixed, not the thread
-// count). Any PNG reader reads the result.
+// most of a second. The bands stream into the file (atomically, core/atomic_file.h) as they
+// are, so no copy of the whole compressed image is made. The bytes depend only on the pixels
+// (the bands are fixed, not the thread count). Any PNG reader reads the result.
 #pragma once
 
-#include <cstdint>
-#include <string>
+#include <filesystem>
 
 namespace rockbake::texture_detail {
 
 // `pixels`: size × size texels of `channels` (1..4) samples, row-major, 8 or 16 `bits` each
-// (16-bit samples in the host's order). Returns the file's bytes. Throws std::runtime_error
-// if zlib fails.
-std::string encodePng(const void* pixels, int size, int channels, int bits, bool srgb);
+// (16-bit samples in the host's order). Throws std::runtime_error if zlib or the write fails.
+void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb);
 
 }  // namespace rockbake::texture_detail

@@ -95,8 +95,9 @@ RaySource::RaySource(const AssetMeshes& source) : scene_(std::make_unique<Scene>
   if (!s.device) fail(nullptr, "rtcNewDevice");
   s.scene = rtcNewScene(s.device);
   if (!s.scene) fail(s.device, "rtcNewScene");
-  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);  // HIGH's spatial splits are not deterministic
+  rtcSetSceneFlags(
+      s.scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);  // compact: a hero's source is millions of triangles
+  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);    // HIGH's spatial splits are not deterministic
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   const SurfaceMesh* surfaces[2] = {&source.rock, &source.colluvium};
   for (int i = 0; i < 2; ++i) {

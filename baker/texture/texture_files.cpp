@@ -3,10 +3,12 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfOutputFile.h>
-#include <ImfStdIO.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <ostream>
 #include <stdexcept>
 
 #include <tbb/task_arena.h>
@@ -23,13 +25,11 @@ void writePng(const std::filesystem::path& file, const TextureImage<T>& image, b
   const std::size_t row = std::size_t(image.size) * std::size_t(image.channels);
   if (image.size <= 0 || image.pixels.size() != row * std::size_t(image.size))
     throw std::runtime_error("cannot write PNG " + file.string() + ": the image has no pixels or the wrong size");
-  std::string bytes;
   try {
-    bytes = texture_detail::encodePng(image.pixels.data(), image.size, image.channels, int(8 * sizeof(T)), srgb);
+    texture_detail::writePngFile(file, image.pixels.data(), image.size, image.channels, int(8 * sizeof(T)), srgb);
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write PNG " + file.string() + ": " + e.what());
   }
-  writeFileAtomically(file, bytes);
 }
 
 }  // namespace
@@ -66,25 +66,33 @@ void writeTextureExr(const std::filesystem::path& file, const TextureImage<float
   if (image.channels != 1 || image.size <= 0 ||
       image.pixels.size() != std::size_t(image.size) * std::size_t(image.size))
     throw std::runtime_error("cannot write EXR " + file.string() + ": one channel of size² pixels expected");
-  std::string bytes;
+  // OpenEXR writes straight into the atomic file's stream (it seeks back to patch its offset table).
+  class Stream : public Imf::OStream {
+   public:
+    Stream(std::ostream& out, const std::string& name) : Imf::OStream(name.c_str()), out_(out) {}
+    void write(const char c[], int n) override { out_.write(c, n); }
+    std::uint64_t tellp() override { return std::uint64_t(out_.tellp()); }
+    void seekp(std::uint64_t pos) override { out_.seekp(std::streamoff(pos)); }
+
+   private:
+    std::ostream& out_;
+  };
   try {
-    Imf::Header header(image.size, image.size);
-    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
-    header.compression() = Imf::ZIP_COMPRESSION;
-    Imf::StdOSStream os;
-    {
-      Imf::OutputFile out(os, header, std::max(1, tbb::this_task_arena::max_concurrency()));
+    writeFileAtomically(file, [&](std::ostream& out) {
+      Imf::Header header(image.size, image.size);
+      header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+      header.compression() = Imf::ZIP_COMPRESSION;
+      Stream stream(out, file.string());
+      Imf::OutputFile exr(stream, header, std::max(1, tbb::this_task_arena::max_concurrency()));
       Imf::FrameBuffer frame;
       frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.pixels.data())),
                                    sizeof(float), sizeof(float) * std::size_t(image.size)));
-      out.setFrameBuffer(frame);
-      out.writePixels(image.size);
-    }
-    bytes = os.str();
+      exr.setFrameBuffer(frame);
+      exr.writePixels(image.size);
+    });
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write EXR " + file.string() + ": " + e.what());
   }
-  writeFileAtomically(file, bytes);
 }
 
 }  // namespace rockbake
