@@ -17,6 +17,7 @@ namespace rockbake::texture_detail {
 namespace {
 
 constexpr int kBandRows = 32;
+constexpr int kGroup = 16;  // bands a chunk
 
 void put32(std::string& out, std::uint32_t v) {
   const char b[4] = {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
@@ -78,24 +79,7 @@ void writePngFile(const std::filesystem::path& file, const void* pixels, int siz
     throw std::runtime_error("encodePng: unsupported image");
   const std::size_t stride = std::size_t(size) * std::size_t(channels) * std::size_t(bits / 8);
   const int bands = (size + kBandRows - 1) / kBandRows;
-  std::vector<std::string> deflated(static_cast<std::size_t>(bands));
-  std::vector<std::uint32_t> adler(static_cast<std::size_t>(bands));
   const auto* image = static_cast<const std::uint8_t*>(pixels);
-  tbb::parallel_for(0, bands, [&](int b) {
-    deflated[std::size_t(b)] = deflateBand(image, stride, bits, b * kBandRows, std::min(size, (b + 1) * kBandRows),
-                                           b == bands - 1, adler[std::size_t(b)]);
-  });
-  const std::string zlib_header("\x78\x01", 2);  // deflate, 32 KiB window, fastest
-  std::uint32_t checksum = 1;
-  std::size_t idat_size = zlib_header.size() + 4;
-  for (int b = 0; b < bands; ++b) {
-    idat_size += deflated[std::size_t(b)].size();
-    const int rows = std::min(size, (b + 1) * kBandRows) - b * kBandRows;
-    checksum =
-        std::uint32_t(adler32_combine(checksum, adler[std::size_t(b)], z_off_t(std::size_t(rows) * (stride + 1))));
-  }
-  std::string trailer;
-  put32(trailer, checksum);
 
   std::string head("\x89PNG\r\n\x1a\n", 8);
   std::string header;
@@ -112,22 +96,35 @@ void writePngFile(const std::filesystem::path& file, const void* pixels, int siz
     put32(gamma, 45455);  // 1 / 2.2, for readers that know no sRGB chunk
     chunk(head, "gAMA", gamma);
   }
-  // One IDAT chunk, written piece by piece: its length first, its CRC over the pieces.
-  std::string idat_head;
-  put32(idat_head, std::uint32_t(idat_size));
-  idat_head += "IDAT";
-  idat_head += zlib_header;
-  auto crc = crc32(0, reinterpret_cast<const Bytef*>(idat_head.data() + 4), uInt(idat_head.size() - 4));
-  for (const std::string& band : deflated)
-    crc = crc32(crc, reinterpret_cast<const Bytef*>(band.data()), uInt(band.size()));
-  crc = crc32(crc, reinterpret_cast<const Bytef*>(trailer.data()), uInt(trailer.size()));
-  put32(trailer, std::uint32_t(crc));
-  std::string tail;
-  chunk(tail, "IEND", std::string());
   writeFileAtomically(file, [&](std::ostream& out) {
-    out << head << idat_head;
-    for (const std::string& band : deflated) out << band;
-    out << trailer << tail;
+    out << head;
+    // kGroup bands at a time, deflated in parallel and written as one IDAT chunk (the zlib
+    // stream runs on across chunks), so only their output is held at once.
+    std::uint32_t checksum = 1;
+    for (int first = 0; first < bands; first += kGroup) {
+      const int last = std::min(bands, first + kGroup);
+      std::vector<std::string> deflated(static_cast<std::size_t>(last - first));
+      std::vector<std::uint32_t> adler(deflated.size());
+      tbb::parallel_for(first, last, [&](int b) {
+        deflated[std::size_t(b - first)] =
+            deflateBand(image, stride, bits, b * kBandRows, std::min(size, (b + 1) * kBandRows), b == bands - 1,
+                        adler[std::size_t(b - first)]);
+      });
+      std::string data = first == 0 ? std::string("\x78\x01", 2) : std::string();  // zlib: deflate, fastest
+      for (int b = first; b < last; ++b) {
+        data += deflated[std::size_t(b - first)];
+        const int rows = std::min(size, (b + 1) * kBandRows) - b * kBandRows;
+        checksum = std::uint32_t(
+            adler32_combine(checksum, adler[std::size_t(b - first)], z_off_t(std::size_t(rows) * (stride + 1))));
+      }
+      if (last == bands) put32(data, checksum);
+      std::string idat;
+      chunk(idat, "IDAT", data);
+      out << idat;
+    }
+    std::string tail;
+    chunk(tail, "IEND", std::string());
+    out << tail;
   });
 }
 

@@ -347,9 +347,9 @@ std::vector<std::uint16_t> readPngSamples(const std::filesystem::path& file, int
 }
 
 TEST(TextureFiles, PngsReadBackSampleForSample) {
-  // Noise with structure, so every band compresses differently; 300 rows is not a multiple of
-  // the encoder's bands.
-  const int size = 300;
+  // Noise with structure, so every band compresses differently; 600 rows are 19 bands of 32
+  // (the last short) in two IDAT chunks.
+  const int size = 600;
   TextureImage<std::uint16_t> normal{size, 3, std::vector<std::uint16_t>(std::size_t(size) * size * 3)};
   TextureImage<std::uint8_t> mask{size, 4, std::vector<std::uint8_t>(std::size_t(size) * size * 4)};
   for (std::size_t i = 0; i < normal.pixels.size(); ++i) normal.pixels[i] = std::uint16_t(i * 2654435761u >> 13);
@@ -421,6 +421,54 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   // LOD0 is its own source here: every distance is zero but for float rounding (a ray that
   // runs nearly along its triangle, at a rim, meets it a little way off).
   for (float h : height) ASSERT_LT(std::abs(h), 1e-3f);
+}
+
+TEST(TextureSet, ChainInLod0sLayoutGetsNormalMapsOnly) {
+  TextureParams params;
+  params.size = 256;
+  params.ao_rays = 4;
+  const AssetMeshes sphere = test::assetOf(test::sphereSurface(3));
+  const AssetMeshes lod0 = buildUvAtlas(sphere, params).meshes;
+  test::TempDir dir;
+  // A "LOD1" in LOD0's layout (here LOD0 itself): its normal map alone is baked.
+  const TextureSet set = bakeTextureSet({lod0, lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path());
+  std::vector<std::string> files;
+  for (const TextureFile& f : set.files) files.push_back(f.file);
+  EXPECT_EQ(files, (std::vector<std::string>{"s_BaseColor.png", "s_Normal_LOD0.png", "s_ORM.png", "s_Height.exr",
+                                             "s_Mask.png", "s_Normal_LOD1.png"}));
+  EXPECT_EQ(test::readBytes(dir.path() / "s_Normal_LOD0.png"), test::readBytes(dir.path() / "s_Normal_LOD1.png"));
+  EXPECT_GT(set.texels_per_unit[0], 0.0);
+  // Without uvs a LOD cannot be in LOD0's layout.
+  EXPECT_THROW(bakeTextureSet({lod0, sphere}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
+               std::invalid_argument);
+  params.size = 3000;
+  EXPECT_THROW(bakeTextureSet({lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
+               std::invalid_argument);
+}
+
+TEST(Dilate, EveryEmptyTexelCopiesTheNearestCoveredOne) {
+  // Two small squares far apart in a 64² map: every texel ends up pointing at a covered texel
+  // of the square nearer to it.
+  SurfaceMesh m =
+      test::surfaceOf({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}},
+                      {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}});
+  m.uvs = {{0.1f, 0.1f}, {0.2f, 0.1f}, {0.2f, 0.2f}, {0.1f, 0.2f},
+           {0.8f, 0.8f}, {0.9f, 0.8f}, {0.9f, 0.9f}, {0.8f, 0.9f}};
+  TexelMap t = rasterizeUv(test::assetOf(m), 64);
+  const std::vector<std::uint32_t> covered = t.texels;
+  dilateTexels(t);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const std::size_t i = std::size_t(y) * 64 + x, from = valueTexel(t, i);
+      ASSERT_NE(covered[from], kEmptyTexel);
+      const bool first_square = covered[from] < 2, nearer_first = x + y < 63;  // either side of the diagonal
+      if (std::abs(x + y - 63) > 2) {
+        EXPECT_EQ(first_square, nearer_first) << x << "," << y;
+      }
+      if (covered[i] != kEmptyTexel) {
+        EXPECT_EQ(from, i);
+      }
+    }
 }
 
 }  // namespace
