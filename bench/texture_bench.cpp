@@ -18,6 +18,7 @@
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
+#include <malloc.h>
 #include <png.h>
 #include <sys/resource.h>
 
@@ -410,6 +411,14 @@ int main(int argc, char** argv) {
       }()
           .c_str(),
       clock.lap());
+  const double bake_peak = statusMiB("VmHWM");
+  {
+    malloc_trim(0);
+    const double before = statusMiB("VmRSS");
+    const RaySource scene(asset.source);
+    std::printf("memory: the bake peaked at %.0f MiB; the source's ray scene alone takes %.0f MiB\n", bake_peak,
+                statusMiB("VmRSS") - before);
+  }
   TextureParams params;
   params.size = size;
   params.seed = preset.seed;
@@ -424,6 +433,7 @@ int main(int argc, char** argv) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
       const std::filesystem::path folder = out / layout / ("threads" + std::to_string(threads));
       std::filesystem::create_directories(folder);
+      malloc_trim(0);  // what the bake freed goes back to the system: the figure counts live memory
       const double rss0 = statusMiB("VmRSS");
       resetPeakMemory();
       clock.lap();
@@ -440,8 +450,10 @@ int main(int argc, char** argv) {
                                     shared ? LodLayout::SharedWithLod0 : LodLayout::OwnAtlas, params, preset.name,
                                     folder));
       const double total = clock.lap() + atlas_s, cpu = cpuSeconds() - cpu0;
-      std::printf("memory: %.0f MiB before the texture set, peak %.0f MiB during it (+%.0f MiB)\n", rss0,
-                  statusMiB("VmHWM"), statusMiB("VmHWM") - rss0);
+      std::printf(
+          "memory: %.0f MiB live before the texture set, peak %.0f MiB during it (+%.0f MiB); the whole "
+          "run's peak %.0f MiB over the bake's %.0f MiB\n",
+          rss0, statusMiB("VmHWM"), statusMiB("VmHWM") - rss0, std::max(bake_peak, statusMiB("VmHWM")), bake_peak);
       std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU)%s, %zu texels missed the source\n", threads,
                   total, cpu,
                   shared ? (" (LOD0 atlas " + std::to_string(atlas_s) + " s; the chain's simplification, " +

@@ -67,19 +67,19 @@ void tieBreak(const RTCFilterFunctionNArguments* args) {
 unsigned addSurface(RTCDevice device, RTCScene scene, const SurfaceMesh& mesh) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (!g) fail(device, "rtcNewGeometry");
-  // Embree's own buffers (it may read 16 bytes past a vertex: it pads them).
+  // Vertices in a buffer of Embree's own (it may read 16 bytes from a 12-byte vertex and pads
+  // its buffers for that); the triangles read in place.
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.positions.size()));
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
-  if (!vertices || !indices) {
+  if (!vertices) {
     rtcReleaseGeometry(g);
     fail(device, "rtcSetNewGeometryBuffer");
   }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
     for (int k = 0; k < 3; ++k) vertices[3 * i + k] = mesh.positions[i][k];
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int k = 0; k < 3; ++k) indices[3 * i + k] = mesh.triangles[i][k];
+  static_assert(sizeof(mesh.triangles[0]) == 3 * sizeof(unsigned));
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(), 0,
+                             3 * sizeof(unsigned), mesh.triangles.size());
   rtcSetGeometryIntersectFilterFunction(g, tieBreak);
   rtcCommitGeometry(g);
   const unsigned id = rtcAttachGeometry(scene, g);

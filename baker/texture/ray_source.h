@@ -24,8 +24,9 @@ struct SourceHit {
 
 class RaySource {
  public:
-  // Triangles of source.rock (surface 0) and source.colluvium (surface 1). The meshes are
-  // copied. Throws std::runtime_error if Embree fails.
+  // Triangles of source.rock (surface 0) and source.colluvium (surface 1). Positions are
+  // copied; the triangle lists are read in place, so `source` must outlive the RaySource.
+  // Throws std::runtime_error if Embree fails.
   explicit RaySource(const AssetMeshes& source);
   ~RaySource();
   RaySource(const RaySource&) = delete;
