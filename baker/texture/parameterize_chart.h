@@ -6,8 +6,9 @@
 //
 // A chart is usable when it is a topological disk (one boundary loop, Euler characteristic 1),
 // no triangle is turned over, its boundary does not cross itself (with no fold, the map is
-// then one-to-one), and its texel density is even: at most 5 % of its area has a linear scale
-// outside [1/1.6, 1.6] of the chart's mean. A chart that fails is split (splitChart) and both
+// then one-to-one), and its texel density is even: at most 10 % of its area has a linear scale
+// outside [½, 2] of the chart's mean. A vertex the chart touches in two fans (a pinch) is two
+// chart vertices. A chart that fails is split (splitChart) and both
 // halves parameterised again; a single triangle never fails.
 #pragma once
 
