@@ -47,6 +47,13 @@ find_package(meshoptimizer REQUIRED)
 # reentrant C library, Qhull::qhull_r, which has to be linked as well.
 find_package(Qhull REQUIRED)
 
+# The texture stage (docs/textures.md): Embree 3 casts the bake's rays, Eigen's sparse
+# Cholesky solves each chart's LSCM system, zlib compresses the maps' PNGs in parallel
+# bands (texture/png_encoder.h).
+find_package(embree 3 REQUIRED)
+find_package(Eigen3 REQUIRED NO_MODULE)
+find_package(ZLIB REQUIRED)
+
 if(ROCKBAKE_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -9,6 +9,9 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libpng-dev libssl-dev libfreetype-dev fonts-dejavu-core
   libosd-dev libopenexr-dev libimath-dev libopencolorio-dev opencolorio-tools
   libtinygltf-dev libmeshoptimizer-dev libqhull-dev
+  # The texture stage: ray casts (Embree 3), sparse solvers for UV charts (Eigen), the maps'
+  # PNGs compressed in parallel (zlib).
+  libembree-dev libeigen3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
   # Blender's glTF importer reads collision.glb in tests/collision (Blender 3.4; its importer

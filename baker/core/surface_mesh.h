@@ -24,6 +24,12 @@ struct SurfaceMesh {
   std::vector<float> curvature;              // calibrated exposure s, 0..1 (½ flat)
   std::vector<float> altitude;               // normalised altitude, 0 at the ground, 1 at the top of grid.size
   std::vector<std::array<float, 3>> colors;  // linear RGB from the preset's palette
+  // Texture coordinates, empty until the texture stage unwraps the mesh (texture/uv_atlas.h):
+  // [0, 1], glTF's convention (u right, v down, (0, 0) the image's top-left texel corner).
+  std::vector<std::array<float, 2>> uvs;
+  // Tangent frames, with uvs (texture/tangents.h): unit xyz perpendicular to the normal, w = ±1;
+  // the bitangent is cross(normal, xyz) · w, as glTF's TANGENT.
+  std::vector<std::array<float, 4>> tangents;
 };
 
 // A triangle soup with shared vertices, double precision: an artist's blockout

@@ -1,0 +1,58 @@
+// The maps of one LOD (docs/textures.md), each made from the LOD's texel hits on the bake
+// source (trace_texels.h), one map at a time, and dilated into the gutters and the empty
+// atlas (dilate_texels.h). A texel whose rays missed the source takes the LOD's own values
+// there (its normal, colour and attributes; open occlusion; height 0). Every map is a pure
+// function of its inputs, TBB-parallel over rows, so it is byte-identical at any thread count.
+//   normal      RGB 16-bit: the source's interpolated normal in the LOD's tangent frame at the
+//               texel, encoded as glTF decodes it: a client rebuilds n = normalize(x·T + y·B
+//               + z·N) from the interpolated, normalised vertex tangent T, bitangent B =
+//               cross(N, T)·w and normal N (tangents.h), so (x, y, z) is that frame's inverse
+//               applied to the source normal, normalised, stored as (c + 1) / 2 (OpenGL, +Y up)
+//   base colour RGB 8-bit sRGB: the source's interpolated palette colour times the rock's
+//               look at the hit (rock_look.h)
+//   ORM         RGB 8-bit linear: R occlusion (ambient_occlusion.h, per LOD vertex, interpolated),
+//               G roughness (rock_look.h), B metal 0
+//   height      1 channel float: the signed distance from the LOD to the source along the
+//               LOD's normal, world units (positive outwards); LOD0's is the film displacement
+//   mask        RGBA 8-bit linear: durability normalised over the asset's range (0 on
+//               colluvium), colluvium coverage, curvature (exposure, ½ flat), altitude: COLOR_1
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/surface_mesh.h"
+#include "texture/rasterize_uv.h"
+#include "texture/rock_look.h"
+#include "texture/trace_texels.h"
+
+namespace rockbake {
+
+// A square map, row-major, row 0 at v = 0, `channels` values a texel.
+template <class T>
+struct TextureImage {
+  int size = 0;
+  int channels = 0;
+  std::vector<T> pixels;
+};
+
+// What every map of one LOD reads. `lod` has uvs and normals (and tangents for the normal
+// map); `texels` is rasterised from it and dilated; `hits` traced from it; `source` is the
+// bake source.
+struct LodBake {
+  const AssetMeshes* lod = nullptr;
+  const TexelMap* texels = nullptr;
+  const TexelHits* hits = nullptr;
+  const AssetMeshes* source = nullptr;
+};
+
+TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake);
+TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& look);
+// `occlusion`: vertexOcclusion of bake.lod.
+TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::vector<float>, 2>& occlusion,
+                                   const RockLook& look);
+TextureImage<float> bakeHeight(const LodBake& bake);
+TextureImage<std::uint8_t> bakeMask(const LodBake& bake, const RockLook& look);
+
+}  // namespace rockbake

@@ -1,0 +1,286 @@
+#include "texture/pack_charts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/parallel_for.h>
+
+namespace rockbake {
+namespace {
+
+using UV = std::array<double, 2>;
+
+constexpr int kRounds = 8;  // rounds of packing that search the density
+
+double cross(const UV& o, const UV& a, const UV& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// Andrew's monotone chain, counter-clockwise.
+std::vector<UV> convexHull(std::vector<UV> p) {
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<UV> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+// The chart turned so that its bounding rectangle is smallest and wider than tall, moved to
+// the origin: a rotation (cos, sin) and the rotated chart's lower corner.
+struct Placement {
+  double cos = 1, sin = 0;
+  UV low{0, 0};
+  double width = 0, height = 0;
+
+  UV apply(const UV& p) const { return {cos * p[0] - sin * p[1] - low[0], sin * p[0] + cos * p[1] - low[1]}; }
+  // The same chart turned a further quarter turn, (x, y) → (−y, x).
+  Placement quarterTurn() const { return {-sin, cos, {-(low[1] + height), low[0]}, height, width}; }
+};
+
+Placement orient(const std::vector<UV>& uv) {
+  const std::vector<UV> hull = convexHull(uv);
+  Placement best;
+  double best_area = std::numeric_limits<double>::infinity();
+  const auto tryAngle = [&](double c, double s) {
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const UV& p : hull) {
+      const double x = c * p[0] - s * p[1], y = s * p[0] + c * p[1];
+      lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
+      lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+    }
+    const double area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+    if (area < best_area * (1 - 1e-9)) {
+      best_area = area;
+      best = {c, s, {lo[0], lo[1]}, hi[0] - lo[0], hi[1] - lo[1]};
+    }
+  };
+  tryAngle(1, 0);
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const UV& a = hull[i];
+    const UV& b = hull[(i + 1) % hull.size()];
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    if (len > 0) tryAngle((b[0] - a[0]) / len, -(b[1] - a[1]) / len);  // turns the edge onto +x
+  }
+  return best.height > best.width ? best.quarterTurn() : best;
+}
+
+// A chart's footprint at one density: per column of texels, the lowest row its triangles touch
+// and one past the highest (an empty column has bottom > top), grown by `grow` texels each way
+// (a chessboard dilation, on the profiles: the packer only ever reads them), with the chart
+// itself `grow` texels in from the footprint's lower corner.
+struct Footprint {
+  int width = 0, height = 0;
+  std::vector<int> bottom, top;
+};
+
+Footprint footprint(const PackChart& chart, const Placement& place, double density, int grow) {
+  const int width = int(std::ceil(density * place.width)) + 1, height = int(std::ceil(density * place.height)) + 1;
+  std::vector<int> low(std::size_t(width), std::numeric_limits<int>::max()), high(std::size_t(width), -1);
+  std::vector<UV> p(chart.uv.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const UV q = place.apply(chart.uv[i]);
+    p[i] = {density * q[0], density * q[1]};
+  }
+  // Conservative: a texel square meets the triangle where its centre lies in the triangle
+  // grown by the square (each edge pushed out by half the square's extent along its normal).
+  for (const auto& t : chart.triangles) {
+    const UV &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+    const int x0 = std::max(0, int(std::floor(std::min({a[0], b[0], c[0]})))),
+              x1 = std::min(width - 1, int(std::floor(std::max({a[0], b[0], c[0]}))));
+    const int y0 = std::max(0, int(std::floor(std::min({a[1], b[1], c[1]})))),
+              y1 = std::min(height - 1, int(std::floor(std::max({a[1], b[1], c[1]}))));
+    const double sign = cross(a, b, c) < 0 ? -1.0 : 1.0;
+    const UV* v[3] = {&a, &b, &c};
+    double nx[3], ny[3], off[3];
+    for (int k = 0; k < 3; ++k) {
+      const UV &s = *v[k], &e = *v[(k + 1) % 3];
+      nx[k] = -sign * (e[1] - s[1]), ny[k] = sign * (e[0] - s[0]);  // inward
+      off[k] = 0.5 * (std::abs(nx[k]) + std::abs(ny[k])) - (nx[k] * s[0] + ny[k] * s[1]);
+    }
+    const auto inside = [&](int x, int y) {
+      for (int k = 0; k < 3; ++k)
+        if (nx[k] * (x + 0.5) + ny[k] * (y + 0.5) + off[k] < 0) return false;
+      return true;
+    };
+    for (int x = x0; x <= x1; ++x) {
+      int y = y0;  // the column's first and last touched texel
+      while (y <= y1 && !inside(x, y)) ++y;
+      if (y > y1) continue;
+      int z = y1;
+      while (z > y && !inside(x, z)) --z;
+      low[std::size_t(x)] = std::min(low[std::size_t(x)], y);
+      high[std::size_t(x)] = std::max(high[std::size_t(x)], z);
+    }
+  }
+  Footprint f;
+  f.width = width + 2 * grow;
+  f.height = height + 2 * grow;
+  f.bottom.assign(std::size_t(f.width), std::numeric_limits<int>::max());
+  f.top.assign(std::size_t(f.width), std::numeric_limits<int>::min());
+  for (int x = 0; x < width; ++x) {
+    if (high[std::size_t(x)] < 0) continue;
+    for (int d = 0; d <= 2 * grow; ++d) {  // column x lands at x + grow; grown, it reaches x … x + 2 · grow
+      f.bottom[std::size_t(x + d)] = std::min(f.bottom[std::size_t(x + d)], low[std::size_t(x)]);
+      f.top[std::size_t(x + d)] = std::max(f.top[std::size_t(x + d)], high[std::size_t(x)] + 2 * grow + 1);
+    }
+  }
+  return f;
+}
+
+// The same footprint turned half a turn (about its own centre).
+Footprint halfTurn(const Footprint& f) {
+  Footprint r = f;
+  for (int x = 0; x < f.width; ++x) {
+    const std::size_t from = std::size_t(f.width - 1 - x);
+    if (f.bottom[from] > f.top[from]) {
+      r.bottom[std::size_t(x)] = std::numeric_limits<int>::max(),
+      r.top[std::size_t(x)] = std::numeric_limits<int>::min();
+      continue;
+    }
+    r.bottom[std::size_t(x)] = f.height - f.top[from];
+    r.top[std::size_t(x)] = f.height - f.bottom[from];
+  }
+  return r;
+}
+
+struct Spot {
+  int x = 0, y = 0, turn = 0;
+};
+
+// Where a footprint comes to rest on the horizon with its first column at x: how high it sits,
+// or nothing when that is higher than `above` (the best found so far); and how much empty
+// space it leaves beneath it.
+bool rest(const Footprint& f, const std::vector<int>& horizon, int x, int above, int& y, long& waste) {
+  y = 0;
+  for (int i = 0; i < f.width; ++i)
+    if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)]) {
+      y = std::max(y, horizon[std::size_t(x + i)] - f.bottom[std::size_t(i)]);
+      if (y > above) return false;
+    }
+  waste = 0;
+  for (int i = 0; i < f.width; ++i)
+    if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)])
+      waste += y + f.bottom[std::size_t(i)] - horizon[std::size_t(x + i)];
+  return true;
+}
+
+// Every chart dropped onto the horizon, biggest first, where it rests lowest (ties: the least
+// empty space beneath it, then further left, then unturned): every kStride-th column first,
+// then each column near the best of those. Returns the packing's height, or more than `size`
+// when a chart is wider than the map.
+int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<std::size_t>& order, int size,
+         std::vector<Spot>& spots) {
+  constexpr int kStride = 8;
+  std::vector<int> horizon(std::size_t(size), 0);
+  int height = 0;
+  spots.assign(prints.size(), Spot{});
+  for (std::size_t c : order) {
+    int best_y = std::numeric_limits<int>::max();
+    long best_waste = std::numeric_limits<long>::max();
+    Spot best{-1, 0, 0};
+    const auto consider = [&](int turn, int x) {
+      int y = 0;
+      long waste = 0;
+      if (!rest(prints[c][std::size_t(turn)], horizon, x, best_y, y, waste)) return;
+      if (y < best_y || (y == best_y && waste < best_waste)) best_y = y, best_waste = waste, best = {x, y, turn};
+    };
+    for (int turn = 0; turn < 4; ++turn) {
+      const int last = size - prints[c][std::size_t(turn)].width;
+      for (int x = 0; x <= last; x += kStride) consider(turn, x);
+      if (last >= 0 && last % kStride != 0) consider(turn, last);
+    }
+    if (best.x < 0) return std::numeric_limits<int>::max();
+    const Spot coarse = best;
+    const int last = size - prints[c][std::size_t(coarse.turn)].width;
+    for (int x = std::max(0, coarse.x - kStride + 1); x <= std::min(last, coarse.x + kStride - 1); ++x)
+      consider(coarse.turn, x);
+    const Footprint& f = prints[c][std::size_t(best.turn)];
+    for (int i = 0; i < f.width; ++i)
+      if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)]) {
+        horizon[std::size_t(best.x + i)] = best.y + f.top[std::size_t(i)];
+        height = std::max(height, horizon[std::size_t(best.x + i)]);
+      }
+    spots[c] = best;
+  }
+  return height;
+}
+
+}  // namespace
+
+double packCharts(std::vector<PackChart>& charts, int size, int padding) {
+  if (charts.empty()) return 0.0;
+  const int grow = (padding + 1) / 2;  // two grown footprints apart: 2 · grow + 1 > padding texels between charts
+  std::vector<Placement> place(charts.size());
+  double area = 0;
+  for (std::size_t i = 0; i < charts.size(); ++i) {
+    place[i] = orient(charts[i].uv);
+    for (const auto& t : charts[i].triangles)
+      area += 0.5 * std::abs(cross(charts[i].uv[t[0]], charts[i].uv[t[1]], charts[i].uv[t[2]]));
+  }
+  std::vector<std::size_t> order(charts.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return place[a].width * place[a].height > place[b].width * place[b].height;
+  });
+
+  // Start where the charts would cover 60 % of the map, rescale by the height missed until
+  // one density fits and one does not, then bisect between them.
+  double density = area > 0 ? size * std::sqrt(0.6 / area) : 1.0, fits = 0, fails = 0;
+  std::vector<Spot> spots, best_spots;
+  std::vector<std::array<Footprint, 4>> prints(charts.size()), best_prints;
+  for (int round = 0; round < kRounds || fits == 0; ++round) {
+    if (round > 4 * kRounds)
+      throw std::runtime_error("cannot pack " + std::to_string(charts.size()) + " UV charts into a " +
+                               std::to_string(size) + "² map with " + std::to_string(padding) +
+                               "-texel gutters (raise texture.size or lower texture.padding)");
+    tbb::parallel_for(std::size_t(0), charts.size(), [&](std::size_t i) {
+      prints[i][0] = footprint(charts[i], place[i], density, grow);
+      prints[i][1] = halfTurn(prints[i][0]);
+      prints[i][2] = footprint(charts[i], place[i].quarterTurn(), density, grow);
+      prints[i][3] = halfTurn(prints[i][2]);
+    });
+    const int height = drop(prints, order, size, spots);
+    if (height <= size) {
+      fits = density;
+      best_spots = spots;
+      best_prints = prints;
+      if (height >= 0.98 * size) break;  // within 1 % of the density that fills the map
+    } else {
+      fails = density;
+    }
+    if (fits > 0 && fails > 0)
+      density = std::sqrt(fits * fails);
+    else  // heights go with the square of the density
+      density *= std::sqrt(std::clamp(double(size) / std::max(height, 1), 0.25, 4.0));
+    if (fits > 0 && fails > 0 && fails / fits < 1.005) break;
+  }
+  for (std::size_t i = 0; i < charts.size(); ++i) {
+    const Spot& s = best_spots[i];
+    const Footprint& f = best_prints[i][std::size_t(s.turn)];
+    const Placement p = s.turn < 2 ? place[i] : place[i].quarterTurn();
+    for (UV& q : charts[i].uv) {
+      const UV r = p.apply(q);
+      UV at{grow + fits * r[0], grow + fits * r[1]};  // in the footprint
+      if (s.turn % 2 == 1) at = {f.width - at[0], f.height - at[1]};
+      // Rows of the map run down; the chart's up is the image's up.
+      q = {(s.x + at[0]) / size, 1.0 - (s.y + at[1]) / size};
+    }
+  }
+  return fits;
+}
+
+}  // namespace rockbake

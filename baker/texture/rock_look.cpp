@@ -1,0 +1,49 @@
+#include "texture/rock_look.h"
+
+#include <algorithm>
+
+#include "core/hash.h"
+
+namespace rockbake {
+
+namespace {
+double inverse(double scale) {
+  return scale > 0 ? 1.0 / scale : 0.0;
+}
+}  // namespace
+
+RockLook::RockLook(std::uint64_t seed, double radius, double voxel_size, std::array<float, 2> durability_range)
+    : mottle_(counterHash(seed, purposeId("texture-mottle"), 0, 0)),
+      variation_(counterHash(seed, purposeId("texture-variation"), 0, 0)),
+      grain_(counterHash(seed, purposeId("texture-grain"), 0, 0)),
+      colluvium_grain_(counterHash(seed, purposeId("texture-colluvium-grain"), 0, 0)),
+      mottle_scale_(inverse(0.25 * radius)),
+      variation_scale_(inverse(voxel_size)),
+      grain_scale_(inverse(0.02 * radius)),
+      colluvium_scale_(inverse(0.015 * radius)),
+      durability_min_(durability_range[0]),
+      durability_span_(durability_range[1] - durability_range[0]) {}
+
+float RockLook::colourFactor(const std::array<double, 3>& p, float cover) const {
+  const auto at = [&](const PerlinNoise& n, double s) { return s > 0 ? n(p[0] * s, p[1] * s, p[2] * s) : 0.0; };
+  const double variation = 0.06 * at(variation_, variation_scale_);
+  const double rock = 0.10 * mottle_.fractal(p[0] * mottle_scale_, p[1] * mottle_scale_, p[2] * mottle_scale_, 2) +
+                      variation + 0.05 * at(grain_, grain_scale_);
+  const double c = std::clamp(double(cover), 0.0, 1.0);
+  const double colluvium = c > 0 ? 0.12 * at(colluvium_grain_, colluvium_scale_) + variation : 0.0;
+  return float(1.0 + (1.0 - c) * rock + c * colluvium);
+}
+
+float RockLook::normalisedDurability(float durability) const {
+  if (durability <= 0.0f) return 0.0f;
+  return durability_span_ > 0 ? std::clamp((durability - durability_min_) / durability_span_, 0.0f, 1.0f) : 0.5f;
+}
+
+float RockLook::roughness(const std::array<double, 3>& p, float durability, float cover) const {
+  const double grain = grain_scale_ > 0 ? grain_(p[0] * grain_scale_, p[1] * grain_scale_, p[2] * grain_scale_) : 0.0;
+  const double rock = 0.9 - 0.15 * normalisedDurability(durability) + 0.04 * grain;
+  const double c = std::clamp(double(cover), 0.0, 1.0);
+  return float(std::clamp((1.0 - c) * rock + c * 0.95, 0.0, 1.0));
+}
+
+}  // namespace rockbake

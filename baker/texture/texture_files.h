@@ -1,0 +1,33 @@
+// Texture files (docs/textures.md), named in the Megascans manner and written atomically
+// (core/atomic_file.h): the bytes depend on the pixels alone (no time stamps).
+//   <name>_BaseColor.png       8-bit sRGB RGB (an sRGB chunk says so)
+//   <name>_Normal_LOD<k>.png   16-bit RGB, linear
+//   <name>_ORM.png             8-bit RGB, linear (no colour chunk: data, not colour)
+//   <name>_Mask.png            8-bit RGBA, linear
+//   <name>_Height.exr          32-bit float, one channel "Y", ZIP-compressed, world units
+// PNGs are compressed for speed, in parallel bands (png_encoder.h); any PNG reader reads them.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "texture/bake_maps.h"
+#include "texture/texture_params.h"
+
+namespace rockbake {
+
+// "<name>_BaseColor.png", "<name>_Normal_LOD<lod>.png", …; `lod` >= 0 adds "_LOD<lod>" to a
+// map that is not a normal map too (a LOD with an atlas of its own), and a normal map without
+// it is LOD0's.
+std::string textureFileName(const std::string& name, TextureMap map, int lod = -1);
+
+// 8-bit, 3 or 4 channels; `srgb`: the values are sRGB-encoded colour. Throws
+// std::runtime_error naming the file on failure (nothing is left half-written).
+void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::uint8_t>& image, bool srgb);
+// 16-bit, 3 channels, linear.
+void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::uint16_t>& image);
+// 32-bit float, 1 channel.
+void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image);
+
+}  // namespace rockbake

@@ -1,0 +1,40 @@
+#include "texture/texture_params.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rockbake {
+
+void checkTextureParams(const TextureParams& p) {
+  const auto fail = [](const std::string& what) { throw std::invalid_argument("texture." + what); };
+  if (p.size < 256 || p.size > 8192 || (p.size & (p.size - 1)) != 0)
+    fail("size: " + std::to_string(p.size) + " is not a power of two from 256 to 8192");
+  if (p.padding < 0 || p.padding > 64) fail("padding: " + std::to_string(p.padding) + " is outside 0..64 texels");
+  if (p.ao_rays < 1 || p.ao_rays > 1024) fail("ao_rays: " + std::to_string(p.ao_rays) + " is outside 1..1024");
+  if (!(p.ao_distance >= 0) || !std::isfinite(p.ao_distance)) fail("ao_distance: must be 0 or a positive length");
+  if (!(p.cage >= 0) || !std::isfinite(p.cage)) fail("cage: must be 0 or a positive length");
+  if (!(p.voxel_size >= 0) || !std::isfinite(p.voxel_size)) fail("voxel_size: must be 0 or a positive length");
+}
+
+bool wantsMap(const TextureParams& params, TextureMap map) {
+  return std::find(params.maps.begin(), params.maps.end(), map) != params.maps.end();
+}
+
+std::string mapName(TextureMap map) {
+  switch (map) {
+    case TextureMap::BaseColor:
+      return "base_color";
+    case TextureMap::Normal:
+      return "normal";
+    case TextureMap::Orm:
+      return "orm";
+    case TextureMap::Height:
+      return "height";
+    case TextureMap::Mask:
+      return "mask";
+  }
+  return "unknown";
+}
+
+}  // namespace rockbake

@@ -1,0 +1,158 @@
+#include "texture/uv_atlas.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <utility>
+
+#include <tbb/parallel_for.h>
+
+#include "texture/mesh_helpers.h"
+#include "texture/pack_charts.h"
+#include "texture/parameterize_chart.h"
+#include "texture/segment_charts.h"
+
+namespace rockbake {
+namespace {
+
+struct FlatChart {
+  int surface = 0;
+  std::vector<std::uint32_t> triangles;  // ascending
+  ChartUv uv;
+};
+
+// Segments and flattens one surface; failing charts are split and flattened again, round by
+// round (each round in parallel, results in chart order).
+std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
+  const std::vector<std::uint32_t> chart_of = segmentCharts(mesh);
+  std::uint32_t count = 0;
+  for (std::uint32_t c : chart_of) count = std::max(count, c + 1);
+  std::vector<std::vector<std::uint32_t>> pending(count);
+  for (std::uint32_t t = 0; t < chart_of.size(); ++t) pending[chart_of[t]].push_back(t);
+
+  const auto across = texture_detail::triangleNeighbours(mesh.triangles);
+  std::vector<FlatChart> done;
+  while (!pending.empty()) {
+    std::vector<ChartUv> flat(pending.size());
+    tbb::parallel_for(std::size_t(0), pending.size(),
+                      [&](std::size_t i) { flat[i] = parameterizeChart(mesh, pending[i]); });
+    std::vector<std::vector<std::uint32_t>> again;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      if (flat[i].status == ChartStatus::Ok) {
+        done.push_back({surface, std::move(pending[i]), std::move(flat[i])});
+      } else {
+        auto halves = splitChart(mesh, across, pending[i]);
+        for (auto& half : halves) {
+          std::sort(half.begin(), half.end());
+          if (!half.empty()) again.push_back(std::move(half));
+        }
+      }
+    }
+    pending = std::move(again);
+  }
+  // Charts in order of their lowest triangle, whatever round finished them.
+  std::sort(done.begin(), done.end(),
+            [](const FlatChart& a, const FlatChart& b) { return a.triangles.front() < b.triangles.front(); });
+  return done;
+}
+
+// The surface with a vertex per chart vertex, numbered in order of first use over the
+// triangles, every per-vertex array carried. To be replaced by the mesh kernel's vertex remap.
+SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const FlatChart*>& charts,
+                            const std::vector<std::vector<std::array<double, 2>>>& atlas_uv,
+                            const std::vector<std::size_t>& chart_index) {
+  const std::size_t nt = mesh.triangles.size();
+  // Per triangle: its chart and its position in the chart's triangle list.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> place(nt);
+  for (std::size_t c = 0; c < charts.size(); ++c)
+    for (std::uint32_t i = 0; i < charts[c]->triangles.size(); ++i)
+      place[charts[c]->triangles[i]] = {std::uint32_t(c), i};
+  SurfaceMesh out;
+  out.name = mesh.name;
+  out.triangles.resize(nt);
+  std::unordered_map<std::uint64_t, std::uint32_t> copy;  // (chart, chart vertex) → new vertex
+  copy.reserve(2 * mesh.positions.size());
+  std::vector<std::uint32_t> source;  // new vertex → old
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto [c, i] = place[t];
+      const ChartUv& flat = charts[c]->uv;
+      const std::uint32_t local = flat.corners[i][k];
+      const auto [it, fresh] = copy.try_emplace(std::uint64_t(c) << 32 | local, std::uint32_t(source.size()));
+      if (fresh) {
+        source.push_back(flat.vertices[local]);
+        const auto& uv = atlas_uv[chart_index[c]][local];
+        out.uvs.push_back({float(uv[0]), float(uv[1])});
+      }
+      out.triangles[t][k] = it->second;
+    }
+  const auto carry = [&](const auto& from, auto& to) {
+    if (from.size() != mesh.positions.size()) return;
+    to.resize(source.size());
+    for (std::size_t i = 0; i < source.size(); ++i) to[i] = from[source[i]];
+  };
+  carry(mesh.positions, out.positions);
+  carry(mesh.normals, out.normals);
+  carry(mesh.durability, out.durability);
+  carry(mesh.colluvium, out.colluvium);
+  carry(mesh.curvature, out.curvature);
+  carry(mesh.altitude, out.altitude);
+  carry(mesh.colors, out.colors);
+  return out;
+}
+
+}  // namespace
+
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
+  checkTextureParams(params);
+  const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
+  std::array<std::vector<FlatChart>, 2> flat;
+  for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
+
+  std::vector<PackChart> packed;
+  for (auto& charts : flat)
+    for (auto& c : charts) packed.push_back({c.uv.uv, c.uv.corners});
+  UvAtlas atlas;
+  atlas.charts = packed.size();
+  atlas.texels_per_unit = packCharts(packed, params.size, params.padding);
+  std::vector<std::vector<std::array<double, 2>>> uv;
+  for (PackChart& c : packed) uv.push_back(std::move(c.uv));
+
+  atlas.meshes = meshes;
+  std::array<SurfaceMesh*, 2> out{&atlas.meshes.rock, &atlas.meshes.colluvium};
+  std::size_t first = 0;
+  for (int s = 0; s < 2; ++s) {
+    std::vector<const FlatChart*> charts;
+    std::vector<std::size_t> index;
+    for (const FlatChart& c : flat[s]) charts.push_back(&c), index.push_back(first + index.size());
+    first += charts.size();
+    if (!surfaces[s]->triangles.empty()) *out[s] = splitAlongSeams(*surfaces[s], charts, uv, index);
+  }
+  return atlas;
+}
+
+double texelDensity(const AssetMeshes& meshes, int size) {
+  using namespace texture_detail;
+  std::vector<std::pair<double, double>> density;  // (texels per unit, area)
+  double total = 0;
+  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
+    if (m->uvs.size() != m->positions.size()) continue;
+    for (const auto& t : m->triangles) {
+      const V3 a = toV3(m->positions[t[0]]), b = toV3(m->positions[t[1]]), c = toV3(m->positions[t[2]]);
+      const double area = 0.5 * length(cross(sub(b, a), sub(c, a)));
+      const auto &p = m->uvs[t[0]], &q = m->uvs[t[1]], &r = m->uvs[t[2]];
+      const double uv =
+          0.5 * std::abs((double(q[0]) - p[0]) * (double(r[1]) - p[1]) - (double(q[1]) - p[1]) * (double(r[0]) - p[0]));
+      if (area <= 0) continue;
+      density.emplace_back(size * std::sqrt(uv / area), area);
+      total += area;
+    }
+  }
+  std::sort(density.begin(), density.end());
+  double sum = 0;
+  for (const auto& [d, area] : density)
+    if ((sum += area) >= 0.5 * total) return d;
+  return 0.0;
+}
+
+}  // namespace rockbake

@@ -1,0 +1,36 @@
+// The UV atlas (docs/textures.md): both surfaces of an asset unwrapped into one square map.
+// Each surface is cut into charts (segment_charts.h: near-developable, seams along creases,
+// in concavities and under colluvium), each chart flattened with LSCM and split until it is a
+// one-to-one, evenly scaled disk (parameterize_chart.h), and all charts scaled to one texel
+// density and packed with `params.padding`-texel gutters into `params.size`² texels
+// (pack_charts.h). Closed surfaces of any genus, many components and slivers are handled:
+// a chart that fails is split, down to single triangles.
+//
+// The result holds the same triangles in the same order, with vertices split along the seams
+// (each copy keeps its position, normal, attributes and colour) and `uvs` in [0, 1]; tangents
+// are left empty (tangents.h fills them). Deterministic: a pure function of the meshes and
+// `params.size` and `params.padding` (the thread count does not matter).
+#pragma once
+
+#include <cstddef>
+
+#include "core/surface_mesh.h"
+#include "texture/texture_params.h"
+
+namespace rockbake {
+
+struct UvAtlas {
+  AssetMeshes meshes;            // rock and colluvium with uvs (bounds and durability range as given)
+  std::size_t charts = 0;        // over both surfaces
+  double texels_per_unit = 0.0;  // texel density, texels per world unit (0 when there is no surface)
+};
+
+// Triangle-only meshes (quads are ignored). Throws std::invalid_argument on bad params and
+// std::runtime_error when the charts do not fit the map at any density.
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params);
+
+// The texel density of meshes with uvs in a `size`² map: the area-weighted median over the
+// triangles of sqrt(texel area / surface area), texels per world unit (0 without area).
+double texelDensity(const AssetMeshes& meshes, int size);
+
+}  // namespace rockbake

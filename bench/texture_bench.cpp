@@ -1,0 +1,500 @@
+// The texture stage on a real asset (docs/textures.md; figures in bench/README.md).
+//
+//   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--layout shared|own]
+//                          [--out DIR] [--dump] [--no-fidelity]
+//
+// Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
+// stage's functions, keeping the bake source (the refined surface before simplification) and
+// the LODs the current pipeline makes. Then, for each LOD layout (default both): "shared", the
+// LOD chain simplified from LOD0 after its atlas with the seams kept (meshoptimizer, as the
+// mesh stage will), or "own", every LOD of the current pipeline unwrapped on its own; bakes the
+// texture set at 1 and 2 threads (default both; files compared byte for byte) into
+// DIR/<layout>/threads<N>, printing each step's wall and CPU seconds and the memory the set
+// added (peak RSS during it over RSS before). Per LOD it reports the UV targets (texels
+// claimed by two triangles, atlas use, share of the surface within 2x of the median texel
+// density) and, unless --no-fidelity, the normal fidelity: the mean angle between LOD0's
+// normal and the LOD's, geometry alone and decoded from the written PNGs by glTF's rules in
+// this file's own code. --dump writes each LOD's atlas, charts in colours, into DIR/<layout>.
+#include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+
+#include <malloc.h>
+#include <png.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <meshoptimizer.h>
+#include "core/hash.h"
+#include "core/mesh_checks.h"
+#include "core/png_image.h"
+#include "core/stopwatch.h"
+#include "inputs/resolve_shape.h"
+#include "mesh/bake_attributes.h"
+#include "mesh/extract_surfaces.h"
+#include "mesh/mesh_defects.h"
+#include "mesh/simplify_lods.h"
+#include "mesh/subdivide.h"
+#include "mesh/surface_detail.h"
+#include "preset/load_preset.h"
+#include "sim/shapes.h"
+#include "sim/weathering.h"
+
+#include "texture/rasterize_uv.h"
+#include "texture/ray_source.h"
+#include "texture/texture_files.h"
+#include "texture/texture_set.h"
+#include "texture/trace_texels.h"
+#include "texture/uv_atlas.h"
+
+namespace rockbake {
+namespace {
+
+struct Asset {
+  AssetMeshes source;             // the bake source: refined, detailed, coloured, about the pivot
+  std::vector<AssetMeshes> lods;  // LOD0, LOD1, …
+  double voxel_size = 0;
+};
+
+// buildMeshes' recipe (pipeline/bake_meshes.cpp) with the refined surface kept: the bake source.
+Asset bakeAsset(const Preset& preset) {
+  const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(preset), preset), preset).rock;
+  std::shared_ptr<const SmoothedSdf> sdf;
+  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &sdf);
+  const std::vector<float> exposure = exposureField(rock, preset);
+  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
+  const SubdivideParams levels{preset.mesh.subdivision};
+  meshes.rock = subdivideSurface(meshes.rock, levels);
+  meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
+  const GridLayout& g = rock.layout;
+  projectOntoField(meshes.rock, sdf.get(), g.ground);
+  const double voxel = g.h * g.h * g.h;
+  const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
+  matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
+  sdf = offsetField(sdf, delta, g.ground);
+  projectOntoField(meshes.rock, sdf.get(), g.ground);
+  repairFoldOvers(meshes.rock);
+  repairFoldOvers(meshes.colluvium);
+  const PaletteParams palette = paletteParams(rock, preset.bake);
+  if (preset.mesh.detail)
+    displaceSurface(meshes.rock,
+                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
+  updateBounds(meshes);
+  meshes.durability_range = {palette.durability_min, palette.durability_max};
+  meshes = applyPalette(std::move(meshes), palette);
+  movePivot(meshes, footprintPivot(rock));
+  Asset a;
+  a.voxel_size = g.h;
+  a.source = meshes;
+  a.lods.push_back(simplifyToError(meshes, preset.mesh.max_error * g.h));
+  for (AssetMeshes& lod : simplifyLods(a.lods[0], {preset.mesh.lods})) a.lods.push_back(std::move(lod));
+  return a;
+}
+
+struct UvFigures {
+  double contested = 0, use = 0, within_twice_median = 0;
+};
+
+UvFigures uvFigures(const UvAtlas& atlas, const TexelMap& texels) {
+  UvFigures f;
+  f.contested = double(texels.contested) / double(std::max<std::size_t>(texels.covered, 1));
+  f.use = double(texels.covered) / double(texels.texels.size());
+  std::vector<std::pair<double, double>> density;
+  double total = 0;
+  for (const SurfaceMesh* s : {&atlas.meshes.rock, &atlas.meshes.colluvium})
+    for (const auto& t : s->triangles) {
+      const auto &a = s->positions[t[0]], &b = s->positions[t[1]], &c = s->positions[t[2]];
+      const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+      const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const auto &p = s->uvs[t[0]], &q = s->uvs[t[1]], &r = s->uvs[t[2]];
+      const double uv_area = 0.5 * std::abs((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]));
+      if (area <= 0) continue;
+      density.push_back({std::sqrt(uv_area / area), area});
+      total += area;
+    }
+  std::sort(density.begin(), density.end());
+  double acc = 0, median = 0;
+  for (const auto& [d, a] : density)
+    if ((acc += a) >= 0.5 * total) {
+      median = d;
+      break;
+    }
+  double within = 0;
+  for (const auto& [d, a] : density)
+    if (d >= 0.5 * median && d <= 2 * median) within += a;
+  f.within_twice_median = within / total;
+  return f;
+}
+
+// Charts in colours (by the triangle's chart through shared vertices), gutters black.
+void dumpAtlas(const UvAtlas& atlas, const TexelMap& texels, const std::filesystem::path& file) {
+  std::vector<std::uint32_t> chart;
+  std::uint32_t offset = 0;
+  for (const SurfaceMesh* m : {&atlas.meshes.rock, &atlas.meshes.colluvium}) {
+    std::vector<std::uint32_t> parent(m->positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto find = [&](std::uint32_t v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (const auto& t : m->triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
+    for (const auto& t : m->triangles) chart.push_back(offset + find(t[0]));
+    offset += std::uint32_t(m->positions.size());
+  }
+  RgbImage image;
+  image.width = image.height = texels.size;
+  image.pixels.assign(texels.texels.size() * 3, 0);
+  for (std::size_t i = 0; i < texels.texels.size(); ++i) {
+    const std::uint32_t t = texels.texels[i];
+    if (t == kEmptyTexel) continue;
+    const std::uint64_t h = mix64(chart[t]);
+    for (int c = 0; c < 3; ++c) image.pixels[3 * i + c] = std::uint8_t(64 + (h >> (8 * c)) % 192);
+  }
+  writePngRgb(file, image);
+}
+
+// The LOD chain in LOD0's UV layout, as the mesh stage will make it: each surface of the
+// atlased LOD0 simplified by meshoptimizer to the preset's triangle budgets (shared by the
+// surfaces in proportion, as simplifyLods does), every kept vertex keeping its uv; vertices a
+// seam split share a position, which meshoptimizer keeps together. Normals recomputed and
+// averaged over the copies at one position, so a seam does not show in the shading. (No
+// fold-over repair: that is the mesh stage's.)
+SurfaceMesh simplifyKeepingUvs(const SurfaceMesh& m, std::size_t target) {
+  if (m.triangles.empty()) return m;
+  std::vector<unsigned> indices(3 * m.triangles.size()), out(indices.size());
+  std::memcpy(indices.data(), m.triangles.data(), indices.size() * sizeof(unsigned));
+  const std::size_t n = meshopt_simplify(out.data(), indices.data(), indices.size(), &m.positions[0][0],
+                                         m.positions.size(), sizeof(float) * 3, 3 * target, 1e30f, 0, nullptr);
+  std::vector<std::uint32_t> remap(m.positions.size(), 0xffffffffu), source;
+  SurfaceMesh r;
+  r.name = m.name;
+  for (std::size_t i = 0; i < n; i += 3) {
+    std::array<std::uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t& v = remap[out[i + k]];
+      if (v == 0xffffffffu) v = std::uint32_t(source.size()), source.push_back(out[i + k]);
+      t[k] = v;
+    }
+    r.triangles.push_back(t);
+  }
+  const auto carry = [&](const auto& from, auto& to) {
+    to.resize(source.size());
+    for (std::size_t i = 0; i < source.size(); ++i) to[i] = from[source[i]];
+  };
+  carry(m.positions, r.positions), carry(m.uvs, r.uvs), carry(m.durability, r.durability);
+  carry(m.colluvium, r.colluvium), carry(m.curvature, r.curvature), carry(m.altitude, r.altitude);
+  carry(m.colors, r.colors);
+  computeVertexNormals(r);
+  std::map<std::array<float, 3>, std::array<float, 3>> at;
+  for (std::size_t i = 0; i < r.positions.size(); ++i) {
+    auto& sum = at[r.positions[i]];
+    for (int k = 0; k < 3; ++k) sum[k] += r.normals[i][k];
+  }
+  for (std::size_t i = 0; i < r.positions.size(); ++i) {
+    const auto& sum = at[r.positions[i]];
+    const float l = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+    if (l > 0) r.normals[i] = {sum[0] / l, sum[1] / l, sum[2] / l};
+  }
+  return r;
+}
+
+std::vector<AssetMeshes> sharedChain(const AssetMeshes& lod0, const std::vector<double>& targets) {
+  std::vector<AssetMeshes> chain{lod0};
+  const double rock = double(lod0.rock.triangles.size()), colluvium = double(lod0.colluvium.triangles.size());
+  for (double target : targets) {
+    const double ratio = target >= 1.0 ? target / std::max(1.0, rock + colluvium) : target;
+    AssetMeshes lod = lod0;
+    lod.rock = simplifyKeepingUvs(lod0.rock, std::size_t(std::llround(ratio * rock)));
+    lod.colluvium = simplifyKeepingUvs(lod0.colluvium, std::size_t(std::llround(ratio * colluvium)));
+    chain.push_back(std::move(lod));
+  }
+  return chain;
+}
+
+// A 16-bit RGB PNG as written, read with libpng's own API (no gamma handling): the bench
+// decodes normal maps without the baker's code.
+std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& size) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) throw std::runtime_error("cannot open " + file.string());
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    throw std::runtime_error("cannot read " + file.string());
+  }
+  png_init_io(png, f);
+  png_read_png(png, info, PNG_TRANSFORM_SWAP_ENDIAN, nullptr);
+  size = int(png_get_image_width(png, info));
+  png_bytepp rows = png_get_rows(png, info);
+  std::vector<std::uint16_t> pixels(std::size_t(size) * std::size_t(size) * 3);
+  for (int y = 0; y < size; ++y)
+    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 6);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return pixels;
+}
+
+using V = std::array<double, 3>;
+V sub(const V& a, const V& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+V cross(const V& a, const V& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const V& a, const V& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+V unit(const V& a) {
+  const double l = std::sqrt(dot(a, a));
+  return l > 0 ? V{a[0] / l, a[1] / l, a[2] / l} : a;
+}
+double angle(const V& a, const V& b) {
+  return std::acos(std::clamp(dot(unit(a), unit(b)), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+}
+
+struct Fidelity {
+  // Mean angle, degrees, between LOD0's normal and the LOD's: geometry alone (interpolated
+  // NORMAL), the LOD's map decoded against LOD0's geometry, and both with their maps.
+  double geometry = 0, mapped = 0, both_mapped = 0;
+};
+
+// A surface's shading at barycentrics w of a triangle: its interpolated NORMAL and, with a map,
+// the normal decoded from the map's texel at the interpolated uv by glTF's rules
+// (n = normalize(x·T + y·B + z·N), B = cross(N, T)·w, each interpolated and normalised).
+struct Shading {
+  V geometry, decoded;
+};
+Shading shade(const SurfaceMesh& m, std::uint32_t triangle, const double w[3], const std::vector<std::uint16_t>& map,
+              int size) {
+  V n{0, 0, 0}, t{0, 0, 0}, b{0, 0, 0};
+  double u = 0, v = 0;
+  for (int c = 0; c < 3; ++c) {
+    const std::uint32_t i = m.triangles[triangle][c];
+    const V vn{m.normals[i][0], m.normals[i][1], m.normals[i][2]};
+    const V vt{m.tangents[i][0], m.tangents[i][1], m.tangents[i][2]};
+    const V vb = cross(vn, vt);
+    for (int k = 0; k < 3; ++k) {
+      n[k] += w[c] * vn[k];
+      t[k] += w[c] * vt[k];
+      b[k] += w[c] * vb[k] * m.tangents[i][3];
+    }
+    u += w[c] * m.uvs[i][0], v += w[c] * m.uvs[i][1];
+  }
+  n = unit(n), t = unit(t), b = unit(b);
+  const int x = std::clamp(int(u * size), 0, size - 1), y = std::clamp(int(v * size), 0, size - 1);
+  const std::uint16_t* texel = &map[(std::size_t(y) * std::size_t(size) + std::size_t(x)) * 3];
+  V d;
+  for (int k = 0; k < 3; ++k) d[k] = texel[k] / 65535.0 * 2.0 - 1.0;
+  V decoded;
+  for (int k = 0; k < 3; ++k) decoded[k] = d[0] * t[k] + d[1] * b[k] + d[2] * n[k];
+  return {n, unit(decoded)};
+}
+
+// Over LOD k's covered texels, against LOD0 where the line along LOD k's normal meets it.
+Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map, int size, const AssetMeshes& lod0,
+                  const std::vector<std::uint16_t>& lod0_map, const RaySource& lod0_rays, double reach) {
+  const TexelMap texels = rasterizeUv(lod, size);
+  Fidelity sum;
+  std::size_t count = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
+      if (texels.texels[i] == kEmptyTexel) continue;
+      const TriangleRef ref = triangleRef(lod, texels.texels[i]);
+      const SurfaceMesh& m = ref.surface == 0 ? lod.rock : lod.colluvium;
+      const auto w = texelBarycentrics(m, ref.triangle, x, y, size);
+      const double weights[3] = {w[0], w[1], w[2]};
+      const Shading here = shade(m, ref.triangle, weights, map, size);
+      V p{0, 0, 0};
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) p[k] += w[c] * m.positions[m.triangles[ref.triangle][c]][k];
+      const V& n = here.geometry;
+      const SourceHit hit = lod0_rays.nearestAlong(ref.surface, {float(p[0]), float(p[1]), float(p[2])},
+                                                   {float(n[0]), float(n[1]), float(n[2])}, float(reach));
+      if (!hit.hit) continue;
+      const double w0[3] = {1.0 - hit.u - hit.v, hit.u, hit.v};
+      const Shading there = shade(ref.surface == 0 ? lod0.rock : lod0.colluvium, hit.triangle, w0, lod0_map, size);
+      sum.geometry += angle(here.geometry, there.geometry);
+      sum.mapped += angle(here.decoded, there.geometry);
+      sum.both_mapped += angle(here.decoded, there.decoded);
+      ++count;
+    }
+  const double n = double(std::max<std::size_t>(count, 1));
+  return {sum.geometry / n, sum.mapped / n, sum.both_mapped / n};
+}
+
+// A /proc/self/status field in MiB ("VmRSS", "VmHWM").
+double statusMiB(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(std::string(field) + ":", 0) == 0) return std::stod(line.substr(std::strlen(field) + 1)) / 1024.0;
+  return 0.0;
+}
+
+// Starts the peak-memory count afresh (Linux: clear_refs 5 resets VmHWM to the current RSS).
+void resetPeakMemory() {
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+// User and system CPU seconds of the whole process so far (all threads).
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+std::string readAll(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+}  // namespace rockbake
+
+int main(int argc, char** argv) {
+  using namespace rockbake;
+  std::filesystem::path preset_file = std::filesystem::path(ROCKBAKE_SOURCE_DIR) / "presets" / "goblin.yaml";
+  std::optional<int> resolution;
+  int size = 2048;
+  std::filesystem::path out = std::filesystem::temp_directory_path() / "rockbake-texture-bench";
+  bool dump = false;
+  std::vector<int> thread_counts{1, 2};
+  std::vector<std::string> layouts{"shared", "own"};
+  bool fidelity_figures = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
+    if (a == "--resolution")
+      resolution = std::stoi(next());
+    else if (a == "--size")
+      size = std::stoi(next());
+    else if (a == "--out")
+      out = next();
+    else if (a == "--dump")
+      dump = true;
+    else if (a == "--threads")
+      thread_counts = {std::stoi(next())};
+    else if (a == "--no-fidelity")
+      fidelity_figures = false;
+    else if (a == "--layout")
+      layouts = {next()};
+    else
+      preset_file = a;
+  }
+  spdlog::set_level(spdlog::level::warn);
+  const Preset preset = loadPreset(preset_file, {{}, {}, resolution});
+  Stopwatch clock;
+  const Asset asset = bakeAsset(preset);
+  std::printf(
+      "%s at %d: bake source %zu + %zu triangles, LODs %s; %.2f s to bake\n", preset.name.c_str(),
+      preset.grid.resolution, asset.source.rock.triangles.size(), asset.source.colluvium.triangles.size(),
+      [&] {
+        std::string l;
+        for (const AssetMeshes& m : asset.lods)
+          l += std::to_string(m.rock.triangles.size() + m.colluvium.triangles.size()) + " ";
+        return l;
+      }()
+          .c_str(),
+      clock.lap());
+  const double bake_peak = statusMiB("VmHWM");
+  {
+    malloc_trim(0);
+    const double before = statusMiB("VmRSS");
+    const RaySource scene(asset.source);
+    std::printf("memory: the bake peaked at %.0f MiB; the source's ray scene alone takes %.0f MiB\n", bake_peak,
+                statusMiB("VmRSS") - before);
+  }
+  TextureParams params;
+  params.size = size;
+  params.seed = preset.seed;
+  params.voxel_size = asset.voxel_size;
+
+  for (const std::string& layout : layouts) {
+    std::printf("\n== %s layout ==\n", layout.c_str());
+    const bool shared = layout == "shared";
+    std::vector<TextureSet> sets;
+    std::vector<AssetMeshes> chain;
+    for (int threads : thread_counts) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+      const std::filesystem::path folder = out / layout / ("threads" + std::to_string(threads));
+      std::filesystem::create_directories(folder);
+      malloc_trim(0);  // what the bake freed goes back to the system: the figure counts live memory
+      const double rss0 = statusMiB("VmRSS");
+      resetPeakMemory();
+      clock.lap();
+      double atlas_s = 0, chain_s = 0;
+      if (shared) {
+        const UvAtlas atlas = buildUvAtlas(asset.lods[0], params);
+        atlas_s = clock.lap();
+        std::printf("LOD0 atlas: %zu charts\n", atlas.charts);
+        chain = sharedChain(atlas.meshes, preset.mesh.lods);
+        chain_s = clock.lap();
+      }
+      const double cpu0 = cpuSeconds();
+      sets.push_back(bakeTextureSet(shared ? chain : asset.lods, asset.source,
+                                    shared ? LodLayout::SharedWithLod0 : LodLayout::OwnAtlas, params, preset.name,
+                                    folder));
+      const double total = clock.lap() + atlas_s, cpu = cpuSeconds() - cpu0;
+      std::printf(
+          "memory: %.0f MiB live before the texture set, peak %.0f MiB during it (+%.0f MiB); the whole "
+          "run's peak %.0f MiB over the bake's %.0f MiB\n",
+          rss0, statusMiB("VmHWM"), statusMiB("VmHWM") - rss0, std::max(bake_peak, statusMiB("VmHWM")), bake_peak);
+      std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU)%s, %zu texels missed the source\n", threads,
+                  total, cpu,
+                  shared ? (" (LOD0 atlas " + std::to_string(atlas_s) + " s; the chain's simplification, " +
+                            std::to_string(chain_s) + " s, not counted)")
+                               .c_str()
+                         : "",
+                  sets.back().missed);
+      for (const TextureSet::Step& step : sets.back().steps)
+        std::printf("  %-18s %7.3f s (CPU %.3f s)\n", step.name.c_str(), step.seconds, step.cpu_seconds);
+    }
+    if (sets.size() == 2) {
+      bool same = true;
+      for (const TextureFile& f : sets[0].files)
+        same &= readAll(out / layout / "threads1" / f.file) == readAll(out / layout / "threads2" / f.file);
+      std::printf("files at 1 and 2 threads: %s\n", same ? "byte-identical" : "DIFFERENT");
+    }
+    const TextureSet& set = sets.back();
+    const std::filesystem::path last = out / layout / ("threads" + std::to_string(thread_counts.back()));
+    const RaySource lod0_rays(set.lods[0]);
+    int lod0_size = 0;
+    const auto lod0_map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, 0), lod0_size);
+    for (std::size_t k = 0; k < set.lods.size(); ++k) {
+      const TexelMap texels = rasterizeUv(set.lods[k], size);
+      UvAtlas atlas;
+      atlas.meshes = set.lods[k];
+      const UvFigures f = uvFigures(atlas, texels);
+      int map_size = 0;
+      const auto map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
+      const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_rays,
+                                                       0.1 * lod0_rays.radius())
+                                            : Fidelity{};
+      std::printf(
+          "LOD%zu: %zu triangles (target %s), %.0f texels/unit; contested %.3f %%, use %.1f %%, within 2x of "
+          "median density %.1f %%; normal vs LOD0: geometry %.2f°, map %.2f° (%.2f x), both with maps %.2f° "
+          "(%.2f x)\n",
+          k, set.lods[k].rock.triangles.size() + set.lods[k].colluvium.triangles.size(),
+          k == 0 ? "-" : std::to_string(int(preset.mesh.lods[k - 1])).c_str(), set.texels_per_unit[k],
+          100 * f.contested, 100 * f.use, 100 * f.within_twice_median, fid.geometry, fid.mapped,
+          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9));
+      if (dump) dumpAtlas(atlas, texels, out / layout / ("atlas_lod" + std::to_string(k) + ".png"));
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,475 @@
+// The maps (texture/bake_maps.h): a tangent-space round trip decoded by glTF's rules in this
+// file's own code, occlusion in a crevice and on open ground, each layer's colour where the
+// layer is, the rasteriser's shared-edge rule, tangent handedness, and byte-identical files at
+// one and two threads.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <tbb/global_control.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+#include <cmath>
+#include <csetjmp>
+#include <cstring>
+
+#include "core/colour.h"
+#include "mesh/simplify_lods.h"
+#include "texture/ambient_occlusion.h"
+#include "texture/bake_maps.h"
+#include "texture/dilate_texels.h"
+#include "texture/rasterize_uv.h"
+#include "texture/ray_source.h"
+#include "texture/tangents.h"
+#include "texture/texture_files.h"
+#include "texture/texture_set.h"
+#include "texture/trace_texels.h"
+#include "texture/uv_atlas.h"
+#include "texture_fixtures.h"
+
+namespace rockbake {
+namespace {
+
+using V = std::array<double, 3>;
+V add(const V& a, const V& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+V mul(const V& a, double s) {
+  return {a[0] * s, a[1] * s, a[2] * s};
+}
+double dot(const V& a, const V& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+V cross(const V& a, const V& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+V unit(const V& a) {
+  return mul(a, 1.0 / std::sqrt(dot(a, a)));
+}
+double degrees(const V& a, const V& b) {
+  return std::acos(std::clamp(dot(unit(a), unit(b)), -1.0, 1.0)) * 180.0 / 3.14159265358979;
+}
+
+// Everything one LOD's maps need, built the way texture_set.cpp builds it.
+struct Baked {
+  UvAtlas atlas;
+  TexelMap texels;
+  TexelHits hits;
+  LodBake bake() const { return {&atlas.meshes, &texels, &hits, source}; }
+  const AssetMeshes* source = nullptr;
+};
+
+Baked prepare(const AssetMeshes& lod, const AssetMeshes& source, const RaySource& rays, int size, double cage) {
+  TextureParams params;
+  params.size = size;
+  params.padding = 4;
+  Baked b;
+  b.source = &source;
+  b.atlas = buildUvAtlas(lod, params);
+  computeTangents(b.atlas.meshes.rock);
+  computeTangents(b.atlas.meshes.colluvium);
+  b.texels = rasterizeUv(b.atlas.meshes, size);
+  dilateTexels(b.texels);
+  b.hits = traceTexels(b.atlas.meshes, b.texels, rays, cage);
+  return b;
+}
+
+// A point of the LOD at texel (x, y): weights over its triangle's vertices, by uv.
+struct TexelPoint {
+  const SurfaceMesh* mesh;
+  std::array<std::uint32_t, 3> v;
+  std::array<double, 3> w;
+  V interpolate(const std::vector<std::array<float, 3>>& a) const {
+    V r{0, 0, 0};
+    for (int i = 0; i < 3; ++i) r = add(r, mul({a[v[i]][0], a[v[i]][1], a[v[i]][2]}, w[i]));
+    return r;
+  }
+};
+
+TexelPoint texelPoint(const AssetMeshes& m, const TexelMap& texels, int x, int y) {
+  const TriangleRef ref = triangleRef(m, texels.texels[std::size_t(y) * texels.size + x]);
+  const SurfaceMesh& s = ref.surface == 0 ? m.rock : m.colluvium;
+  // Barycentrics by uv, written out here rather than through the baker's texelBarycentrics.
+  const auto& t = s.triangles[ref.triangle];
+  const double px = (x + 0.5) / texels.size, py = (y + 0.5) / texels.size;
+  const auto &a = s.uvs[t[0]], &b = s.uvs[t[1]], &c = s.uvs[t[2]];
+  const double d = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  const double w1 = ((px - a[0]) * (c[1] - a[1]) - (py - a[1]) * (c[0] - a[0])) / d;
+  const double w2 = ((b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0])) / d;
+  return {&s, t, {1 - w1 - w2, w1, w2}};
+}
+
+bool covered(const TexelMap& texels, int x, int y) {
+  const std::uint32_t t = texels.texels[std::size_t(y) * texels.size + x];
+  return t != kEmptyTexel && !(t & kDilatedTexel);
+}
+
+// The bumpy sphere r = 1 + a · s(u), s(p) = sin(k x) sin(k y) sin(k z), u the unit direction,
+// and its exact normal: the gradient of |p| − 1 − a · s(p / |p|).
+constexpr double kBump = 0.05, kWaves = 6.0;
+V bumpyNormal(const V& u) {
+  const double sx = std::sin(kWaves * u[0]), sy = std::sin(kWaves * u[1]), sz = std::sin(kWaves * u[2]);
+  const V grad{kWaves * std::cos(kWaves * u[0]) * sy * sz, kWaves * sx * std::cos(kWaves * u[1]) * sz,
+               kWaves * sx * sy * std::cos(kWaves * u[2])};
+  const V tangential = add(grad, mul(u, -dot(grad, u)));
+  const double r = 1 + kBump * sx * sy * sz;
+  return unit(add(u, mul(tangential, -kBump / r)));
+}
+
+SurfaceMesh bumpySphere() {
+  SurfaceMesh s = test::sphereSurface(6);
+  for (auto& p : s.positions) {
+    const V u = unit({p[0], p[1], p[2]});
+    const double r = 1 + kBump * std::sin(kWaves * u[0]) * std::sin(kWaves * u[1]) * std::sin(kWaves * u[2]);
+    p = {float(u[0] * r), float(u[1] * r), float(u[2] * r)};
+  }
+  return test::surfaceOf(s.positions, s.triangles);
+}
+
+TEST(NormalMap, RoundTripDecodedByGltfRules) {
+  const AssetMeshes source = test::assetOf(bumpySphere());
+  const AssetMeshes lod = test::assetOf(test::sphereSurface(2));
+  const RaySource rays(source);
+  const int size = 512;
+  const Baked b = prepare(lod, source, rays, size, 0.2);
+  EXPECT_EQ(b.hits.missed, 0u);
+  const TextureImage<std::uint16_t> map = bakeNormalMap(b.bake());
+  ASSERT_EQ(map.size, size);
+  ASSERT_EQ(map.channels, 3);
+
+  double right = 0, green_flipped = 0, geometry = 0;
+  std::size_t n = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (!covered(b.texels, x, y)) continue;
+      const TexelPoint p = texelPoint(b.atlas.meshes, b.texels, x, y);
+      // glTF: interpolate NORMAL, TANGENT.xyz and the bitangent cross(N, T) · w, normalise.
+      V normal{0, 0, 0}, tangent{0, 0, 0}, bitangent{0, 0, 0};
+      for (int i = 0; i < 3; ++i) {
+        const auto& nv = p.mesh->normals[p.v[i]];
+        const auto& tv = p.mesh->tangents[p.v[i]];
+        const V nn{nv[0], nv[1], nv[2]}, tt{tv[0], tv[1], tv[2]};
+        normal = add(normal, mul(nn, p.w[i]));
+        tangent = add(tangent, mul(tt, p.w[i]));
+        bitangent = add(bitangent, mul(cross(nn, tt), p.w[i] * tv[3]));
+      }
+      normal = unit(normal), tangent = unit(tangent), bitangent = unit(bitangent);
+      const std::uint16_t* texel = &map.pixels[(std::size_t(y) * size + x) * 3];
+      const double cx = texel[0] / 65535.0 * 2 - 1, cy = texel[1] / 65535.0 * 2 - 1, cz = texel[2] / 65535.0 * 2 - 1;
+      const V decoded = add(add(mul(tangent, cx), mul(bitangent, cy)), mul(normal, cz));
+      const V flipped = add(add(mul(tangent, cx), mul(bitangent, -cy)), mul(normal, cz));
+      const V truth = bumpyNormal(unit(p.interpolate(p.mesh->positions)));
+      right += degrees(decoded, truth);
+      green_flipped += degrees(flipped, truth);
+      geometry += degrees(normal, truth);
+      ++n;
+    }
+  ASSERT_GT(n, 10000u);
+  right /= double(n), green_flipped /= double(n), geometry /= double(n);
+  std::printf("mean angle to the bumpy sphere's normal: decoded %.2f°, green flipped %.2f°, geometry alone %.2f°\n",
+              right, green_flipped, geometry);
+  EXPECT_LT(right, 2.0);
+  EXPECT_GT(green_flipped, 3 * right);
+  EXPECT_GT(green_flipped, 4.0);
+  EXPECT_GT(geometry, 4 * right);
+}
+
+TEST(Tangents, FollowUAndMirroredUvFlipsHandedness) {
+  // A unit square in z = 0 facing +z; u along +x, v down the image = −y.
+  SurfaceMesh m = test::surfaceOf({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  m.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  computeTangents(m);
+  for (const auto& t : m.tangents) {
+    EXPECT_NEAR(t[0], 1.0f, 1e-6);
+    EXPECT_NEAR(t[1], 0.0f, 1e-6);
+    EXPECT_NEAR(t[2], 0.0f, 1e-6);
+    EXPECT_EQ(t[3], 1.0f);  // bitangent cross(+z, +x) = +y: up the image, as v decreases
+  }
+  for (auto& uv : m.uvs) uv[0] = 1 - uv[0];  // mirrored in u
+  computeTangents(m);
+  for (const auto& t : m.tangents) {
+    EXPECT_NEAR(t[0], -1.0f, 1e-6);
+    EXPECT_EQ(t[3], -1.0f);
+  }
+}
+
+TEST(Rasterize, SharedEdgeClaimedOnce) {
+  // Two triangles splitting the whole unit square along a diagonal through texel centres.
+  SurfaceMesh m = test::surfaceOf({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const TexelMap t = rasterizeUv(test::assetOf(m), 64);
+  EXPECT_EQ(t.covered, 64u * 64u);
+  EXPECT_EQ(t.contested, 0u);
+  // The same square twice: every texel contested.
+  SurfaceMesh twice = m;
+  twice.triangles.push_back({0, 1, 2});
+  twice.triangles.push_back({0, 2, 3});
+  EXPECT_EQ(rasterizeUv(test::assetOf(twice), 64).contested, 64u * 64u);
+}
+
+TEST(Occlusion, CreviceDarkerThanConvexTopOpenPlaneNearOne) {
+  // Two unit spheres overlapping (centres 1.9 apart): a narrow crevice rings their junction.
+  SurfaceMesh pair;
+  for (float cx : {-0.95f, 0.95f}) {
+    const SurfaceMesh s = test::sphereSurface(4);
+    const auto base = std::uint32_t(pair.positions.size());
+    for (const auto& p : s.positions) pair.positions.push_back({p[0] + cx, p[1], p[2]});
+    for (const auto& t : s.triangles) pair.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  const AssetMeshes spheres = test::assetOf(test::surfaceOf(pair.positions, pair.triangles));
+  const RaySource rays(spheres);
+  TextureParams params;
+  params.ao_rays = 64;
+  const int size = 512;
+  const Baked b = prepare(spheres, spheres, rays, size, 0.05);
+  const auto occlusion = vertexOcclusion(b.atlas.meshes, rays, params);
+  const RockLook look(1, rays.radius(), 0.0, {0.0f, 1.0f});
+  const TextureImage<std::uint8_t> orm = bakeOrm(b.bake(), occlusion, look);
+  // The texels nearest a point in the crevice and the left sphere's outer pole.
+  const auto nearest = [&](const V& target) {
+    double best = 1e9;
+    int value = -1;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        if (!covered(b.texels, x, y)) continue;
+        const V p = texelPoint(b.atlas.meshes, b.texels, x, y).interpolate(b.atlas.meshes.rock.positions);
+        const V d = add(p, mul(target, -1));
+        if (dot(d, d) < best) best = dot(d, d), value = orm.pixels[(std::size_t(y) * size + x) * 3];
+      }
+    return value;
+  };
+  const int crevice = nearest({-0.05, 0.436, 0.0}), top = nearest({-1.95, 0.0, 0.0});
+  std::printf("occlusion (R of ORM): crevice %d, convex top %d\n", crevice, top);
+  EXPECT_LT(crevice, top - 60);
+  EXPECT_GE(top, 235);
+
+  // A flat square open to the sky: nothing occludes it.
+  std::vector<std::array<float, 3>> p;
+  std::vector<std::array<std::uint32_t, 3>> t;
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i <= 10; ++i) p.push_back({0.1f * i, 0.1f * j, 0.0f});
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const auto v = std::uint32_t(j * 11 + i);
+      t.push_back({v, v + 1, v + 12});
+      t.push_back({v, v + 12, v + 11});
+    }
+  const AssetMeshes plane = test::assetOf(test::surfaceOf(p, t));
+  const RaySource plane_rays(plane);
+  const Baked pb = prepare(plane, plane, plane_rays, 256, 0.05);
+  const auto open = vertexOcclusion(pb.atlas.meshes, plane_rays, params);
+  const TextureImage<std::uint8_t> plane_orm = bakeOrm(pb.bake(), open, look);
+  for (std::size_t i = 0; i < plane_orm.pixels.size(); i += 3) ASSERT_EQ(plane_orm.pixels[i], 255);
+}
+
+TEST(BaseColor, EachLayerShowsItsColourWhereItIs) {
+  // The source: a sphere whose upper half is one layer (red-brown) and lower half another
+  // (pale buff), as the palette colours vertices; the LOD: a coarse sphere.
+  SurfaceMesh fine = test::sphereSurface(5);
+  const std::array<float, 3> upper{0.27f, 0.07f, 0.03f}, lower{0.77f, 0.58f, 0.35f};
+  for (std::size_t i = 0; i < fine.positions.size(); ++i) {
+    const bool up = fine.positions[i][2] > 0;
+    fine.colors[i] = up ? upper : lower;
+    fine.durability[i] = up ? 3.0f : 0.6f;
+  }
+  AssetMeshes source = test::assetOf(fine);
+  source.durability_range = {0.6f, 3.0f};
+  const RaySource rays(source);
+  const int size = 512;
+  const Baked b = prepare(test::assetOf(test::sphereSurface(2)), source, rays, size, 0.2);
+  const RockLook look(7, rays.radius(), 0.05, source.durability_range);
+  const TextureImage<std::uint8_t> colour = bakeBaseColor(b.bake(), look);
+  std::array<double, 3> sum_up{}, sum_low{};
+  std::size_t up = 0, low = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (!covered(b.texels, x, y)) continue;
+      const V p = texelPoint(b.atlas.meshes, b.texels, x, y).interpolate(b.atlas.meshes.rock.positions);
+      if (std::abs(p[2]) < 0.2) continue;  // away from the boundary between the layers
+      auto& sum = p[2] > 0 ? sum_up : sum_low;
+      (p[2] > 0 ? up : low)++;
+      for (int c = 0; c < 3; ++c) sum[c] += srgbToLinear(colour.pixels[(std::size_t(y) * size + x) * 3 + c] / 255.0f);
+    }
+  ASSERT_GT(up, 1000u);
+  ASSERT_GT(low, 1000u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(sum_up[c] / double(up), upper[c], 0.02) << "channel " << c;
+    EXPECT_NEAR(sum_low[c] / double(low), lower[c], 0.03) << "channel " << c;
+  }
+}
+
+// A PNG's bit depth, colour type and whether it carries an sRGB chunk.
+struct PngHeader {
+  int depth = 0, colour_type = 0;
+  bool srgb = false;
+};
+PngHeader readPngHeader(const std::filesystem::path& file) {
+  PngHeader h;
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return h;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (!setjmp(png_jmpbuf(png))) {
+    png_init_io(png, f);
+    png_read_info(png, info);
+    h.depth = png_get_bit_depth(png, info);
+    h.colour_type = png_get_color_type(png, info);
+    h.srgb = png_get_valid(png, info, PNG_INFO_sRGB) != 0;
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return h;
+}
+
+// Every sample of a PNG, as libpng reads it (16-bit in the host's order).
+std::vector<std::uint16_t> readPngSamples(const std::filesystem::path& file, int& size, int& channels) {
+  std::vector<std::uint16_t> samples;
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return samples;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (!setjmp(png_jmpbuf(png))) {
+    png_init_io(png, f);
+    png_read_png(png, info, PNG_TRANSFORM_SWAP_ENDIAN, nullptr);
+    size = int(png_get_image_width(png, info));
+    channels = png_get_channels(png, info);
+    const int depth = png_get_bit_depth(png, info);
+    png_bytepp rows = png_get_rows(png, info);
+    for (int y = 0; y < int(png_get_image_height(png, info)); ++y)
+      for (int i = 0; i < size * channels; ++i)
+        samples.push_back(depth == 16 ? reinterpret_cast<const std::uint16_t*>(rows[y])[i] : rows[y][i]);
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return samples;
+}
+
+TEST(TextureFiles, PngsReadBackSampleForSample) {
+  // Noise with structure, so every band compresses differently; 600 rows are 19 bands of 32
+  // (the last short) in two IDAT chunks.
+  const int size = 600;
+  TextureImage<std::uint16_t> normal{size, 3, std::vector<std::uint16_t>(std::size_t(size) * size * 3)};
+  TextureImage<std::uint8_t> mask{size, 4, std::vector<std::uint8_t>(std::size_t(size) * size * 4)};
+  for (std::size_t i = 0; i < normal.pixels.size(); ++i) normal.pixels[i] = std::uint16_t(i * 2654435761u >> 13);
+  for (std::size_t i = 0; i < mask.pixels.size(); ++i) mask.pixels[i] = std::uint8_t((i / 7) ^ (i * 40503u >> 9));
+  test::TempDir dir;
+  writeTexturePng(dir.path() / "n.png", normal);
+  writeTexturePng(dir.path() / "m.png", mask, false);
+  int read_size = 0, channels = 0;
+  std::vector<std::uint16_t> samples = readPngSamples(dir.path() / "n.png", read_size, channels);
+  EXPECT_EQ(read_size, size);
+  EXPECT_EQ(channels, 3);
+  EXPECT_EQ(samples, normal.pixels);
+  samples = readPngSamples(dir.path() / "m.png", read_size, channels);
+  EXPECT_EQ(channels, 4);
+  ASSERT_EQ(samples.size(), mask.pixels.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) ASSERT_EQ(samples[i], mask.pixels[i]) << i;
+}
+
+TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
+  const AssetMeshes& source = test::weatheredRock().meshes;
+  std::vector<AssetMeshes> lods{source};
+  lods.push_back(simplifyLods(source, {{0.2}}).front());
+  TextureParams params;
+  params.size = 512;
+  params.ao_rays = 8;
+  params.seed = 3;
+  params.voxel_size = 2.0 / 32;
+  test::TempDir one, two;
+  TextureSet sets[2];
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    sets[0] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", one.path());
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    sets[1] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", two.path());
+  }
+  // LOD0: five maps; LOD1: all but the height.
+  ASSERT_EQ(sets[0].files.size(), 9u);
+  for (const TextureFile& f : sets[0].files) {
+    EXPECT_EQ(test::readBytes(one.path() / f.file), test::readBytes(two.path() / f.file)) << f.file;
+  }
+  EXPECT_TRUE(std::filesystem::exists(one.path() / "small_BaseColor.png"));
+  EXPECT_TRUE(std::filesystem::exists(one.path() / "small_Normal_LOD0.png"));
+  EXPECT_TRUE(std::filesystem::exists(one.path() / "small_Normal_LOD1.png"));
+  EXPECT_TRUE(std::filesystem::exists(one.path() / "small_BaseColor_LOD1.png"));
+  EXPECT_FALSE(std::filesystem::exists(one.path() / "small_Height_LOD1.exr"));
+
+  const PngHeader colour = readPngHeader(one.path() / "small_BaseColor.png");
+  EXPECT_EQ(colour.depth, 8);
+  EXPECT_EQ(colour.colour_type, PNG_COLOR_TYPE_RGB);
+  EXPECT_TRUE(colour.srgb);
+  const PngHeader normal = readPngHeader(one.path() / "small_Normal_LOD0.png");
+  EXPECT_EQ(normal.depth, 16);
+  EXPECT_FALSE(normal.srgb);
+  const PngHeader mask = readPngHeader(one.path() / "small_Mask.png");
+  EXPECT_EQ(mask.colour_type, PNG_COLOR_TYPE_RGB_ALPHA);
+  EXPECT_FALSE(mask.srgb);
+
+  // The height: one float channel, the LOD0-to-source distance, within the cage.
+  Imf::InputFile exr((one.path() / "small_Height.exr").c_str());
+  ASSERT_NE(exr.header().channels().findChannel("Y"), nullptr);
+  EXPECT_EQ(exr.header().channels().findChannel("Y")->type, Imf::FLOAT);
+  std::vector<float> height(512 * 512);
+  Imf::FrameBuffer frame;
+  frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(height.data()), sizeof(float), 512 * sizeof(float)));
+  exr.setFrameBuffer(frame);
+  exr.readPixels(0, 511);
+  // LOD0 is its own source here: every distance is zero but for float rounding (a ray that
+  // runs nearly along its triangle, at a rim, meets it a little way off).
+  for (float h : height) ASSERT_LT(std::abs(h), 1e-3f);
+}
+
+TEST(TextureSet, ChainInLod0sLayoutGetsNormalMapsOnly) {
+  TextureParams params;
+  params.size = 256;
+  params.ao_rays = 4;
+  const AssetMeshes sphere = test::assetOf(test::sphereSurface(3));
+  const AssetMeshes lod0 = buildUvAtlas(sphere, params).meshes;
+  test::TempDir dir;
+  // A "LOD1" in LOD0's layout (here LOD0 itself): its normal map alone is baked.
+  const TextureSet set = bakeTextureSet({lod0, lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path());
+  std::vector<std::string> files;
+  for (const TextureFile& f : set.files) files.push_back(f.file);
+  EXPECT_EQ(files, (std::vector<std::string>{"s_BaseColor.png", "s_Normal_LOD0.png", "s_ORM.png", "s_Height.exr",
+                                             "s_Mask.png", "s_Normal_LOD1.png"}));
+  EXPECT_EQ(test::readBytes(dir.path() / "s_Normal_LOD0.png"), test::readBytes(dir.path() / "s_Normal_LOD1.png"));
+  EXPECT_GT(set.texels_per_unit[0], 0.0);
+  // Without uvs a LOD cannot be in LOD0's layout.
+  EXPECT_THROW(bakeTextureSet({lod0, sphere}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
+               std::invalid_argument);
+  params.size = 3000;
+  EXPECT_THROW(bakeTextureSet({lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
+               std::invalid_argument);
+}
+
+TEST(Dilate, EveryEmptyTexelCopiesTheNearestCoveredOne) {
+  // Two small squares far apart in a 64² map: every texel ends up pointing at a covered texel
+  // of the square nearer to it.
+  SurfaceMesh m =
+      test::surfaceOf({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}},
+                      {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}});
+  m.uvs = {{0.1f, 0.1f}, {0.2f, 0.1f}, {0.2f, 0.2f}, {0.1f, 0.2f},
+           {0.8f, 0.8f}, {0.9f, 0.8f}, {0.9f, 0.9f}, {0.8f, 0.9f}};
+  TexelMap t = rasterizeUv(test::assetOf(m), 64);
+  const std::vector<std::uint32_t> covered = t.texels;
+  dilateTexels(t);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const std::size_t i = std::size_t(y) * 64 + x, from = valueTexel(t, i);
+      ASSERT_NE(covered[from], kEmptyTexel);
+      const bool first_square = covered[from] < 2, nearer_first = x + y < 63;  // either side of the diagonal
+      if (std::abs(x + y - 63) > 2) {
+        EXPECT_EQ(first_square, nearer_first) << x << "," << y;
+      }
+      if (covered[i] != kEmptyTexel) {
+        EXPECT_EQ(from, i);
+      }
+    }
+}
+
+}  // namespace
+}  // namespace rockbake
