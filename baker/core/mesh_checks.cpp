@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/triangle_geometry.h"
+
 namespace rockbake {
 namespace {
 
@@ -28,14 +30,6 @@ std::vector<OpenEdge> openEdges(std::vector<std::array<std::uint32_t, 3>> edges)
     i = j;
   }
   return open;
-}
-
-template <class Point>
-double tetVolume(const Point& p, const Point& q, const Point& r) {
-  return (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-          double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-          double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-         6.0;
 }
 
 }  // namespace

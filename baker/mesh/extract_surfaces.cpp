@@ -1,6 +1,7 @@
 #include "mesh/extract_surfaces.h"
 
 #include "core/mesh_checks.h"
+#include "core/triangle_geometry.h"
 
 #include "core/openvdb_support.h"
 #include "mesh/subdivide.h"
@@ -312,12 +313,8 @@ double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, b
       const auto& a = mesh.positions[t[0]];
       const auto& b = mesh.positions[t[1]];
       const auto& c = mesh.positions[t[2]];
-      const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-      const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
       const bool cap = ground && a[2] == 0.0f && b[2] == 0.0f && c[2] == 0.0f;
-      if (!cap)
-        area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
-                                std::pow(u[0] * v[1] - u[1] * v[0], 2));
+      if (!cap) area += triangleArea(a, b, c);
     }
     if (area <= 0) break;
     const double delta =

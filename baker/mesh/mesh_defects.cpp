@@ -11,22 +11,12 @@
 #include <vector>
 
 #include "core/mesh_checks.h"
+#include "core/triangle_geometry.h"
+#include "core/vec3.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {
 namespace {
-
-using Vec = std::array<double, 3>;
-
-Vec sub(const std::array<float, 3>& a, const std::array<float, 3>& b) {
-  return {double(a[0]) - b[0], double(a[1]) - b[1], double(a[2]) - b[2]};
-}
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec& a, const Vec& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // The piece (triangles connected through shared vertices) of every vertex,
 // named by one of its vertices (union-find).
@@ -48,16 +38,12 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
   MeshDefects d;
   const std::size_t nt = m.triangles.size();
   if (nt == 0) return d;
-  std::vector<Vec> normal(nt);
+  std::vector<Vec3d> normal(nt);
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& tri = m.triangles[t];
-    const Vec e0 = sub(m.positions[tri[1]], m.positions[tri[0]]);
-    const Vec e1 = sub(m.positions[tri[2]], m.positions[tri[0]]);
-    const Vec e2 = sub(m.positions[tri[2]], m.positions[tri[1]]);
-    normal[t] = cross(e0, e1);
-    const double longest = std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
-    // |cross| is twice the area; zero area relative to the triangle's own size.
-    if (std::sqrt(dot(normal[t], normal[t])) <= 2e-6 * longest) {
+    const auto &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+    normal[t] = triangleNormal(a, b, c);
+    if (isZeroArea(a, b, c)) {
       ++d.zero_area;
       d.defect_vertices.insert(d.defect_vertices.end(), tri.begin(), tri.end());
     }
@@ -108,15 +94,8 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
     for (int k = 0; k < 3; ++k) used[t[k]] = 1;
   for (std::uint32_t v = 0; v < piece.size(); ++v) d.components += used[v] && piece[v] == v;
   std::unordered_map<std::uint32_t, double> volume_of;
-  for (const auto& t : m.triangles) {
-    const auto& p = m.positions[t[0]];
-    const auto& q = m.positions[t[1]];
-    const auto& r = m.positions[t[2]];
-    volume_of[piece[t[0]]] += (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-                               double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-                               double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-                              6.0;
-  }
+  for (const auto& t : m.triangles)
+    volume_of[piece[t[0]]] += tetVolume(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
   for (const auto& [root, volume] : volume_of) d.shells += volume > 0;
   d.volume = signedVolume(m);
   return d;
@@ -138,9 +117,9 @@ struct FlipMesh {
   explicit FlipMesh(SurfaceMesh& mesh) : m(mesh) {
     faces_of_edge.reserve(m.triangles.size() * 2);
     for (std::uint32_t t = 0; t < m.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) add(edgeKey(m.triangles[t][k], m.triangles[t][(k + 1) % 3]), t);
+      for (int k = 0; k < 3; ++k) addFace(edgeKey(m.triangles[t][k], m.triangles[t][(k + 1) % 3]), t);
   }
-  void add(std::uint64_t key, std::uint32_t t) {
+  void addFace(std::uint64_t key, std::uint32_t t) {
     auto [it, fresh] = faces_of_edge.try_emplace(key, std::array<std::uint32_t, 2>{t, UINT32_MAX});
     if (!fresh) it->second[1] = t;
   }
@@ -153,20 +132,16 @@ struct FlipMesh {
     if (it == faces_of_edge.end()) return UINT32_MAX;
     return it->second[0] == t ? it->second[1] : it->second[0];
   }
-  Vec normal(const std::array<std::uint32_t, 3>& t) const {
-    return cross(sub(m.positions[t[1]], m.positions[t[0]]), sub(m.positions[t[2]], m.positions[t[0]]));
+  Vec3d normal(const std::array<std::uint32_t, 3>& t) const {
+    return triangleNormal(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
   }
   bool zeroArea(const std::array<std::uint32_t, 3>& t) const {
-    const Vec e0 = sub(m.positions[t[1]], m.positions[t[0]]);
-    const Vec e1 = sub(m.positions[t[2]], m.positions[t[0]]);
-    const Vec e2 = sub(m.positions[t[2]], m.positions[t[1]]);
-    const Vec n = cross(e0, e1);
-    return std::sqrt(dot(n, n)) <= 2e-6 * std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)});
+    return isZeroArea(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
   }
   bool defective(std::uint32_t t) const {
     const auto& tri = m.triangles[t];
     if (zeroArea(tri)) return true;
-    const Vec n = normal(tri);
+    const Vec3d n = normal(tri);
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t u = across(t, tri[k], tri[(k + 1) % 3]);
       if (u == UINT32_MAX || dot(n, normal(m.triangles[u])) >= 0) return false;
@@ -185,17 +160,16 @@ struct FlipMesh {
       if (nb[j] != a && nb[j] != b) d = nb[j];
     if (d == UINT32_MAX || d == c || faces_of_edge.count(edgeKey(c, d))) return false;
     // The surroundings: the four outer neighbours' normals, each unit length.
-    Vec reference{0, 0, 0};
+    Vec3d reference{0, 0, 0};
     const std::array<std::array<std::uint32_t, 3>, 2> quad{tri, nb};
     for (std::uint32_t f : {t, u})
       for (int j = 0; j < 3; ++j) {
         const auto& ft = m.triangles[f];
         const std::uint32_t g = across(f, ft[j], ft[(j + 1) % 3]);
         if (g == t || g == u || g == UINT32_MAX) continue;
-        Vec n = normal(m.triangles[g]);
-        const double len = std::sqrt(dot(n, n));
-        if (len > 0)
-          for (int i = 0; i < 3; ++i) reference[i] += n[i] / len;
+        const Vec3d n = normal(m.triangles[g]);
+        const double len = length(n);
+        if (len > 0) reference = add(reference, divide(n, len));
       }
     (void)quad;
     const std::array<std::uint32_t, 3> t1{a, d, c}, t2{b, c, d};
@@ -235,15 +209,11 @@ bool tryCollapse(SurfaceMesh& m, const std::vector<std::vector<std::uint32_t>>& 
   for (std::uint32_t f : around[v]) {
     auto tri = m.triangles[f];
     if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;  // goes away
-    const Vec before =
-        cross(sub(m.positions[tri[1]], m.positions[tri[0]]), sub(m.positions[tri[2]], m.positions[tri[0]]));
+    const Vec3d before = triangleNormal(m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]);
     for (auto& y : tri) y = y == v ? w : y;
-    const Vec e0 = sub(m.positions[tri[1]], m.positions[tri[0]]);
-    const Vec e1 = sub(m.positions[tri[2]], m.positions[tri[0]]);
-    const Vec e2 = sub(m.positions[tri[2]], m.positions[tri[1]]);
-    const Vec after = cross(e0, e1);
-    if (std::sqrt(dot(after, after)) <= 2e-6 * std::max({dot(e0, e0), dot(e1, e1), dot(e2, e2)})) return false;
-    if (dot(before, after) <= 0) return false;
+    const auto &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+    if (isZeroArea(a, b, c)) return false;
+    if (dot(before, triangleNormal(a, b, c)) <= 0) return false;
   }
   for (std::uint32_t f : around[v]) {
     auto& tri = m.triangles[f];
@@ -292,8 +262,8 @@ std::size_t repairFoldOvers(SurfaceMesh& mesh) {
         // Longest edge first: a zero-area cap is fixed by flipping its long edge.
         std::array<int, 3> order{0, 1, 2};
         const auto len2 = [&](int k) {
-          const Vec e = sub(mesh.positions[mesh.triangles[t][(k + 1) % 3]], mesh.positions[mesh.triangles[t][k]]);
-          return dot(e, e);
+          const auto& tri = mesh.triangles[t];
+          return distanceSquared(toVec3d(mesh.positions[tri[(k + 1) % 3]]), toVec3d(mesh.positions[tri[k]]));
         };
         std::sort(order.begin(), order.end(), [&](int x, int y) { return len2(x) > len2(y); });
         for (int k : order)
@@ -320,8 +290,7 @@ std::size_t repairFoldOvers(SurfaceMesh& mesh) {
       const auto tri = mesh.triangles[t];
       std::array<std::pair<double, int>, 3> edges;
       for (int k = 0; k < 3; ++k) {
-        const Vec e = sub(mesh.positions[tri[(k + 1) % 3]], mesh.positions[tri[k]]);
-        edges[k] = {dot(e, e), k};
+        edges[k] = {distanceSquared(toVec3d(mesh.positions[tri[(k + 1) % 3]]), toVec3d(mesh.positions[tri[k]])), k};
       }
       std::sort(edges.begin(), edges.end());
       bool done = false;
@@ -381,21 +350,17 @@ std::size_t relaxFoldOvers(SurfaceMesh& mesh) {
           if (w != v) ring.push_back(w);
       std::sort(ring.begin(), ring.end());
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-      Vec mean{0, 0, 0};
-      for (std::uint32_t w : ring)
-        for (int i = 0; i < 3; ++i)
-          mean[std::size_t(i)] += double(mesh.positions[w][std::size_t(i)]) / double(ring.size());
-      const std::array<float, 3> original = mesh.positions[v];
+      Vec3d mean{0, 0, 0};
+      for (std::uint32_t w : ring) mean = add(mean, divide(toVec3d(mesh.positions[w]), double(ring.size())));
+      const Vec3f original = mesh.positions[v];
       // Towards the neighbours' mean first, then towards each neighbour in turn.
-      std::vector<Vec> goals{mean};
-      for (std::uint32_t w : ring)
-        goals.push_back({double(mesh.positions[w][0]), double(mesh.positions[w][1]), double(mesh.positions[w][2])});
-      for (const Vec& goal : goals) {
+      std::vector<Vec3d> goals{mean};
+      for (std::uint32_t w : ring) goals.push_back(toVec3d(mesh.positions[w]));
+      for (const Vec3d& goal : goals) {
         for (double step : {1.0, 0.5, 0.25}) {
           if (&goal != &goals[0] && step == 1.0) continue;  // onto a neighbour: zero area
-          for (int i = 0; i < 3; ++i)
-            mesh.positions[v][std::size_t(i)] =
-                float(double(original[std::size_t(i)]) + step * (goal[std::size_t(i)] - original[std::size_t(i)]));
+          const Vec3d from = toVec3d(original);
+          mesh.positions[v] = toVec3f(add(from, scale(sub(goal, from), step)));
           if (defects(r) < before) {
             moved = true;
             break;

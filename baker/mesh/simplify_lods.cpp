@@ -13,6 +13,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
+#include "core/vec3.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 
@@ -143,26 +144,18 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
     // Sort the faces around the edge by angle; an outgoing face's outward
     // normal turns towards increasing angle, so the solid between two sheets
     // lies between it and the face just before it: pair those.
-    const auto& pu = positions[k >> 32];
-    const auto& pw = positions[k & 0xffffffffu];
-    const std::array<double, 3> d0{double(pw[0]) - pu[0], double(pw[1]) - pu[1], double(pw[2]) - pu[2]};
-    const double dl = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
-    const std::array<double, 3> d =
-        dl > 0 ? std::array<double, 3>{d0[0] / dl, d0[1] / dl, d0[2] / dl} : std::array<double, 3>{0, 0, 0};
+    const Vec3d pu = toVec3d(positions[k >> 32]);
+    const Vec3d d = normalised(sub(toVec3d(positions[k & 0xffffffffu]), pu), Vec3d{0, 0, 0});
     const auto radial = [&](std::size_t c) {  // the face's third vertex, off the axis
-      const auto& px = positions[indices[prev(c)]];
-      std::array<double, 3> r{double(px[0]) - pu[0], double(px[1]) - pu[1], double(px[2]) - pu[2]};
-      const double along = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
-      for (int a = 0; a < 3; ++a) r[a] -= along * d[a];
-      return r;
+      const Vec3d r = sub(toVec3d(positions[indices[prev(c)]]), pu);
+      return sub(r, scale(d, dot(r, d)));
     };
     std::vector<std::pair<double, std::size_t>> around;  // (angle, corner); in-faces marked by the high bit
-    const std::array<double, 3> e1 = radial(list[0]);
-    const std::array<double, 3> e2{d[1] * e1[2] - d[2] * e1[1], d[2] * e1[0] - d[0] * e1[2],
-                                   d[0] * e1[1] - d[1] * e1[0]};
+    const Vec3d e1 = radial(list[0]);
+    const Vec3d e2 = cross(d, e1);
     const auto angle = [&](std::size_t c) {
-      const auto r = radial(c);
-      return std::atan2(r[0] * e2[0] + r[1] * e2[1] + r[2] * e2[2], r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2]);
+      const Vec3d r = radial(c);
+      return std::atan2(dot(r, e2), dot(r, e1));
     };
     constexpr std::size_t kIn = std::size_t(1) << 63;
     for (std::size_t c : list) around.push_back({angle(c), c});
@@ -347,9 +340,7 @@ void lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double 
           const auto it = grid.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
           if (it == grid.end()) continue;
           for (const Point& q : it->second) {
-            const double d2 =
-                std::pow(double(p[0]) - q[0], 2) + std::pow(double(p[1]) - q[1], 2) + std::pow(double(p[2]) - q[2], 2);
-            if (d2 <= radius * radius) {
+            if (distanceSquared(toVec3d(p), toVec3d(q)) <= radius * radius) {
               near[v] = 1;
               break;
             }
@@ -365,12 +356,7 @@ void lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double 
 double meanEdgeLength(const SurfaceMesh& m) {
   double sum = 0;
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const Point& a = m.positions[t[k]];
-      const Point& b = m.positions[t[(k + 1) % 3]];
-      sum += std::sqrt(std::pow(double(a[0]) - b[0], 2) + std::pow(double(a[1]) - b[1], 2) +
-                       std::pow(double(a[2]) - b[2], 2));
-    }
+    for (int k = 0; k < 3; ++k) sum += length(sub(toVec3d(m.positions[t[k]]), toVec3d(m.positions[t[(k + 1) % 3]])));
   return m.triangles.empty() ? 0.0 : sum / double(3 * m.triangles.size());
 }
 

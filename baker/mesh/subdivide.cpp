@@ -11,6 +11,9 @@
 #include <opensubdiv/far/topologyRefinerFactory.h>
 #include <opensubdiv/sdc/crease.h>
 
+#include "core/triangle_geometry.h"
+#include "core/vec3.h"
+
 namespace rockbake {
 namespace {
 
@@ -28,15 +31,11 @@ struct Primvars {
   }
 };
 
-float distance2(const std::array<float, 3>& a, const std::array<float, 3>& b) {
-  const float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return dx * dx + dy * dy + dz * dz;
-}
-
 void splitQuads(SurfaceMesh& m) {
   m.triangles.reserve(m.triangles.size() + 2 * m.quads.size());
   for (const auto& q : m.quads) {
-    if (distance2(m.positions[q[0]], m.positions[q[2]]) <= distance2(m.positions[q[1]], m.positions[q[3]])) {
+    if (distanceSquared(m.positions[q[0]], m.positions[q[2]]) <=
+        distanceSquared(m.positions[q[1]], m.positions[q[3]])) {
       m.triangles.push_back({q[0], q[1], q[2]});
       m.triangles.push_back({q[0], q[2], q[3]});
     } else {
@@ -60,24 +59,13 @@ std::size_t catmullClarkVertexCount(std::size_t vertices, std::size_t triangles,
 }
 
 void computeVertexNormals(SurfaceMesh& m) {
-  std::vector<std::array<double, 3>> acc(m.positions.size(), {0.0, 0.0, 0.0});
+  std::vector<Vec3d> acc(m.positions.size(), {0.0, 0.0, 0.0});
   for (const auto& t : m.triangles) {
-    const auto& a = m.positions[t[0]];
-    const auto& b = m.positions[t[1]];
-    const auto& c = m.positions[t[2]];
-    const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-    const double w[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    for (auto i : t)
-      for (int k = 0; k < 3; ++k) acc[i][k] += n[k];  // |n| = 2 × area: area-weighted
+    const Vec3d n = triangleNormal(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+    for (auto i : t) acc[i] = add(acc[i], n);  // |n| = 2 × area: area-weighted
   }
   m.normals.resize(m.positions.size());
-  for (std::size_t i = 0; i < acc.size(); ++i) {
-    const double len = std::sqrt(acc[i][0] * acc[i][0] + acc[i][1] * acc[i][1] + acc[i][2] * acc[i][2]);
-    m.normals[i] = len > 0
-                       ? std::array<float, 3>{float(acc[i][0] / len), float(acc[i][1] / len), float(acc[i][2] / len)}
-                       : std::array<float, 3>{0.0f, 0.0f, 1.0f};
-  }
+  for (std::size_t i = 0; i < acc.size(); ++i) m.normals[i] = toVec3f(normalised(acc[i], Vec3d{0.0, 0.0, 1.0}));
 }
 
 SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& params) {

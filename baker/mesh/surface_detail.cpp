@@ -9,6 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include "core/hash.h"
+#include "core/triangle_geometry.h"
+#include "core/vec3.h"
 #include "mesh/subdivide.h"
 #include "sim/durability.h"
 
@@ -52,15 +54,11 @@ void displaceSurface(SurfaceMesh& mesh, const DetailParams& params) {
   // Order-free, so the result does not depend on the thread count.
   const std::vector<std::array<float, 3>> rest = mesh.positions;
   const std::size_t nt = mesh.triangles.size();
-  using Vec = std::array<double, 3>;
-  const auto dot = [](const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  const auto normals = [&](const std::vector<std::array<float, 3>>& at, std::vector<Vec>& out) {
+  const auto normals = [&](const std::vector<Vec3f>& at, std::vector<Vec3d>& out) {
     out.resize(nt);
     tbb::parallel_for(std::size_t(0), nt, [&](std::size_t f) {
       const auto& t = mesh.triangles[f];
-      Vec u, v;
-      for (int a = 0; a < 3; ++a) u[a] = double(at[t[1]][a]) - at[t[0]][a], v[a] = double(at[t[2]][a]) - at[t[0]][a];
-      out[f] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      out[f] = triangleNormal(at[t[0]], at[t[1]], at[t[2]]);
     });
   };
   // Pairs of triangles across an edge that faced the same side before.
@@ -72,7 +70,7 @@ void displaceSurface(SurfaceMesh& mesh, const DetailParams& params) {
       edges.push_back({std::min(a, b) << 32 | std::max(a, b), f});
     }
   std::sort(edges.begin(), edges.end());
-  std::vector<Vec> before, after;
+  std::vector<Vec3d> before, after;
   normals(rest, before);
   std::vector<std::array<std::uint32_t, 2>> pairs;
   for (std::size_t e = 0; e + 1 < edges.size(); ++e)
