@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/disjoint_set.h"
 #include "core/mesh_checks.h"
 #include "core/triangle_geometry.h"
 #include "core/vec3.h"
@@ -19,17 +20,11 @@ namespace rockbake {
 namespace {
 
 // The piece (triangles connected through shared vertices) of every vertex,
-// named by one of its vertices (union-find).
+// numbered by the pieces' lowest vertices.
 std::vector<std::uint32_t> pieceOfVertex(const SurfaceMesh& m) {
-  std::vector<std::uint32_t> parent(m.positions.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& t : m.triangles) parent[find(t[1])] = find(t[0]), parent[find(t[2])] = find(t[0]);
-  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = find(v);
-  return parent;
+  DisjointSet pieces(m.positions.size());
+  for (const auto& t : m.triangles) pieces.unite(t[0], t[1]), pieces.unite(t[0], t[2]);
+  return pieces.labels();
 }
 
 }  // namespace
@@ -87,16 +82,16 @@ MeshDefects checkMesh(const SurfaceMesh& m) {
   sortUnique(d.open_edge_vertices);
   d.defect_vertices.insert(d.defect_vertices.end(), d.open_edge_vertices.begin(), d.open_edge_vertices.end());
   sortUnique(d.defect_vertices);
-  // Components through shared vertices.
+  // Components through shared vertices, and those enclosing positive volume.
   const std::vector<std::uint32_t> piece = pieceOfVertex(m);
-  std::vector<char> used(m.positions.size(), 0);
-  for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) used[t[k]] = 1;
-  for (std::uint32_t v = 0; v < piece.size(); ++v) d.components += used[v] && piece[v] == v;
-  std::unordered_map<std::uint32_t, double> volume_of;
-  for (const auto& t : m.triangles)
-    volume_of[piece[t[0]]] += tetVolume(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-  for (const auto& [root, volume] : volume_of) d.shells += volume > 0;
+  const std::uint32_t pieces = piece.empty() ? 0 : *std::max_element(piece.begin(), piece.end()) + 1;
+  std::vector<char> has_triangles(pieces, 0);
+  std::vector<double> volume(pieces, 0.0);
+  for (const auto& t : m.triangles) {
+    has_triangles[piece[t[0]]] = 1;
+    volume[piece[t[0]]] += tetVolume(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  }
+  for (std::uint32_t p = 0; p < pieces; ++p) d.components += has_triangles[p], d.shells += volume[p] > 0;
   d.volume = signedVolume(m);
   return d;
 }

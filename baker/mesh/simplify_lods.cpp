@@ -13,6 +13,7 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
+#include "core/disjoint_set.h"
 #include "core/vec3.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
@@ -179,17 +180,14 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
     for (const auto& [a, c] : around) (c & kIn ? ins : outs).push_back(c & ~kIn);
     for (std::size_t i = 0; i < outs.size(); ++i) twin[outs[i]] = ins[i], twin[ins[i]] = outs[i];
   });
-  // Union-find over corners: corner c and the corner across prev(c)'s edge share a vertex and a fan.
-  std::vector<std::size_t> parent(corners);
-  const auto find = [&](std::size_t c) {
-    while (parent[c] != c) c = parent[c] = parent[parent[c]];
-    return c;
-  };
+  // The fans: corner c and the corner across prev(c)'s edge share a vertex and a fan.
+  DisjointSet fans(corners);
+  const auto find = [&](std::size_t c) { return fans.find(std::uint32_t(c)); };
   const auto group = [&] {
-    for (std::size_t c = 0; c < corners; ++c) parent[c] = c;
+    fans = DisjointSet(corners);
     for (std::size_t c = 0; c < corners; ++c) {
       const std::size_t t = twin[prev(c)];
-      if (t != kNone) parent[find(c)] = find(t);
+      if (t != kNone) fans.unite(std::uint32_t(c), std::uint32_t(t));
     }
   };
   // One crosswise re-pairing per regrouping: each splits fans, so it ends
@@ -268,16 +266,12 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
   // the surface in two (a neck collapsed to a point); other pinches, and glued
   // pairs, only change the genus or seal a slot thinner than the error.
   if (!copies.empty()) {
-    std::vector<std::uint32_t> parent(m.positions.size() + copies.size());
-    for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-    const auto find = [&](std::uint32_t v) {
-      while (parent[v] != v) v = parent[v] = parent[parent[v]];
-      return v;
-    };
+    DisjointSet pieces(m.positions.size() + copies.size());
     for (std::size_t t = 0; t < result.size(); t += 3)
-      parent[find(result[t + 1])] = find(result[t]), parent[find(result[t + 2])] = find(result[t]);
+      pieces.unite(result[t], result[t + 1]), pieces.unite(result[t], result[t + 2]);
     for (std::size_t j = 0; j < copies.size(); ++j)
-      if (find(std::uint32_t(m.positions.size() + j)) != find(copies[j])) pass.cut.push_back(m.positions[copies[j]]);
+      if (!pieces.connected(std::uint32_t(m.positions.size() + j), copies[j]))
+        pass.cut.push_back(m.positions[copies[j]]);
   }
   const auto source = [&](std::size_t i) {
     return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
