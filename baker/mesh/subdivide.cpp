@@ -4,13 +4,13 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 #include <opensubdiv/sdc/crease.h>
 
+#include "core/edge_table.h"
 #include "core/triangle_geometry.h"
 #include "core/vec3.h"
 
@@ -44,6 +44,32 @@ void splitQuads(SurfaceMesh& m) {
     }
   }
   m.quads.clear();
+}
+
+// The ground cap (faces lying on z = 0) meets the walls along an infinitely
+// sharp crease, so the refined surface keeps a flat cap and a crisp foot on
+// the ground instead of rounding up off it. The creased edges' vertex pairs,
+// each edge once (a < b), between a face each way of which one lies on the
+// ground (the last such face each way, where an edge has more).
+std::vector<Far::Index> groundCreases(const SurfaceMesh& mesh) {
+  const std::size_t triangles = mesh.triangles.size();
+  std::vector<char> on_ground(triangles + mesh.quads.size(), 1);
+  const auto onGround = [&](const auto& face) {
+    for (std::uint32_t v : face)
+      if (mesh.positions[v][2] != 0.0f) return false;
+    return true;
+  };
+  for (std::size_t f = 0; f < triangles; ++f) on_ground[f] = onGround(mesh.triangles[f]);
+  for (std::size_t q = 0; q < mesh.quads.size(); ++q) on_ground[triangles + q] = onGround(mesh.quads[q]);
+  const EdgeTable edges(mesh.triangles, mesh.quads);
+  std::vector<Far::Index> pairs;
+  for (std::uint32_t e = 0; e < edges.edges().size(); ++e) {
+    const EdgeTable::Edge& edge = edges.edge(e);
+    if (edge.a == edge.b || edge.forward == 0 || edge.backward == 0) continue;
+    if (on_ground[edges.face(edges.forwardCorners(e).back())] != on_ground[edges.face(edges.backwardCorners(e).back())])
+      pairs.insert(pairs.end(), {Far::Index(edge.a), Far::Index(edge.b)});
+  }
+  return pairs;
 }
 
 }  // namespace
@@ -100,32 +126,7 @@ SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& par
     verts_per_face.push_back(4);
     indices.insert(indices.end(), q.begin(), q.end());
   }
-  // The ground cap (faces lying on z = 0) meets the walls along an
-  // infinitely sharp crease, so the refined surface keeps a flat cap and a
-  // crisp foot on the ground instead of rounding up off it.
-  std::vector<Far::Index> crease_pairs;
-  {
-    std::vector<char> on_ground(nf, 1);
-    std::size_t corner = 0;
-    for (std::size_t f = 0; f < nf; ++f)
-      for (int k = 0; k < verts_per_face[f]; ++k) on_ground[f] &= mesh.positions[indices[corner++]][2] == 0.0f;
-    std::unordered_map<std::uint64_t, std::size_t> face_of_half_edge;
-    face_of_half_edge.reserve(indices.size());
-    const auto key = [](std::uint64_t a, std::uint64_t b) { return (a << 32) | b; };
-    corner = 0;
-    for (std::size_t f = 0; f < nf; ++f) {
-      const int n = verts_per_face[f];
-      for (int k = 0; k < n; ++k) face_of_half_edge[key(indices[corner + k], indices[corner + (k + 1) % n])] = f;
-      corner += std::size_t(n);
-    }
-    for (const auto& [e, f] : face_of_half_edge) {
-      const std::uint64_t a = e >> 32, b = e & 0xffffffffu;
-      if (a > b) continue;  // each edge once
-      const auto other = face_of_half_edge.find(key(b, a));
-      if (other != face_of_half_edge.end() && on_ground[f] != on_ground[other->second])
-        crease_pairs.insert(crease_pairs.end(), {Far::Index(a), Far::Index(b)});
-    }
-  }
+  const std::vector<Far::Index> crease_pairs = groundCreases(mesh);
   const std::vector<float> crease_weights(crease_pairs.size() / 2, Sdc::Crease::SHARPNESS_INFINITE);
 
   Far::TopologyDescriptor desc;
