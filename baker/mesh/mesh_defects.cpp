@@ -14,6 +14,7 @@
 #include "core/mesh_checks.h"
 #include "core/triangle_geometry.h"
 #include "core/vec3.h"
+#include "core/vertex_remap.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {
@@ -218,32 +219,6 @@ bool tryCollapse(SurfaceMesh& m, const std::vector<std::vector<std::uint32_t>>& 
   return true;
 }
 
-// Drops triangles with a repeated index and vertices no triangle uses.
-void compact(SurfaceMesh& m) {
-  std::vector<std::array<std::uint32_t, 3>> kept;
-  kept.reserve(m.triangles.size());
-  for (const auto& t : m.triangles)
-    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) kept.push_back(t);
-  m.triangles = std::move(kept);
-  std::vector<std::uint32_t> remap(m.positions.size(), UINT32_MAX);
-  for (const auto& t : m.triangles)
-    for (std::uint32_t v : t) remap[v] = 0;
-  std::uint32_t next = 0;
-  const auto keep = [&](auto& values) {
-    if (values.size() != remap.size()) return;
-    std::size_t w = 0;
-    for (std::size_t i = 0; i < remap.size(); ++i)
-      if (remap[i] != UINT32_MAX) values[w++] = values[i];
-    values.resize(w);
-  };
-  keep(m.positions), keep(m.normals), keep(m.durability), keep(m.colluvium), keep(m.curvature), keep(m.altitude),
-      keep(m.colors);
-  for (auto& r : remap)
-    if (r != UINT32_MAX) r = next++;
-  for (auto& t : m.triangles)
-    for (auto& v : t) v = remap[v];
-}
-
 }  // namespace
 
 std::size_t repairFoldOvers(SurfaceMesh& mesh) {
@@ -296,7 +271,7 @@ std::size_t repairFoldOvers(SurfaceMesh& mesh) {
       collapsed |= done;
     }
     if (!collapsed) break;
-    compact(mesh);
+    compactMesh(mesh);
   }
   computeVertexNormals(mesh);
   return left;
@@ -388,12 +363,12 @@ std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles) {
   for (auto& t : mesh.triangles) {
     const std::uint32_t root = piece[t[0]];
     if (defective_piece[root] && size[root] <= max_triangles) {
-      t = {t[0], t[0], t[0]};  // dropped by compact()
+      t = {t[0], t[0], t[0]};  // dropped by compactMesh()
       ++dropped;
     }
   }
   if (dropped > 0) {
-    compact(mesh);
+    compactMesh(mesh);
     computeVertexNormals(mesh);
   }
   return dropped;

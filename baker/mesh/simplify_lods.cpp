@@ -15,6 +15,7 @@
 
 #include "core/disjoint_set.h"
 #include "core/vec3.h"
+#include "core/vertex_remap.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 
@@ -273,27 +274,18 @@ Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices
       if (!pieces.connected(std::uint32_t(m.positions.size() + j), copies[j]))
         pass.cut.push_back(m.positions[copies[j]]);
   }
-  const auto source = [&](std::size_t i) {
-    return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
-  };
 
-  // Keep only the vertices still referenced, in their original order (copies last).
-  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> remap(m.positions.size() + copies.size(), kUnused);
+  // Keep only the vertices still referenced, in their original order (copies
+  // last), with every per-vertex value (normals are recomputed below).
+  std::vector<std::uint32_t> remap(m.positions.size() + copies.size(), kDroppedVertex), source;
   for (unsigned int i : result) remap[i] = 0;
-  SurfaceMesh& out = pass.mesh;
-  out.name = m.name;
-  for (std::size_t i = 0; i < remap.size(); ++i) {
-    if (remap[i] == kUnused) continue;
-    remap[i] = std::uint32_t(out.positions.size());
-    const std::size_t s = source(i);
-    out.positions.push_back(m.positions[s]);
-    out.durability.push_back(m.durability[s]);
-    out.colluvium.push_back(m.colluvium[s]);
-    out.curvature.push_back(m.curvature[s]);
-    out.altitude.push_back(m.altitude[s]);
-    if (!m.colors.empty()) out.colors.push_back(m.colors[s]);
+  for (std::uint32_t i = 0; i < remap.size(); ++i) {
+    if (remap[i] == kDroppedVertex) continue;
+    remap[i] = std::uint32_t(source.size());
+    source.push_back(i < m.positions.size() ? i : copies[i - m.positions.size()]);
   }
+  SurfaceMesh& out = pass.mesh;
+  out = gatherVertices(m, source);
   out.triangles.reserve(result.size() / 3);
   for (std::size_t t = 0; t < result.size(); t += 3)
     out.triangles.push_back({remap[result[t]], remap[result[t + 1]], remap[result[t + 2]]});
@@ -447,13 +439,7 @@ std::size_t splitNonManifold(SurfaceMesh& mesh) {
   const std::vector<unsigned int> copies = splitPinches(indices, mesh.positions);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) mesh.triangles[t][k] = indices[3 * t + k];
-  const std::size_t n = mesh.positions.size();
-  const auto extend = [&](auto& attribute) {
-    if (attribute.size() != n) return;
-    for (unsigned int v : copies) attribute.push_back(attribute[v]);
-  };
-  extend(mesh.durability), extend(mesh.colluvium), extend(mesh.curvature), extend(mesh.altitude);
-  extend(mesh.colors), extend(mesh.positions);
+  appendVertexCopies(mesh, copies);
   computeVertexNormals(mesh);
   return copies.size();
 }
