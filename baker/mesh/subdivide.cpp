@@ -72,6 +72,89 @@ std::vector<Far::Index> groundCreases(const SurfaceMesh& mesh) {
   return pairs;
 }
 
+// The mesh's faces, ground creases infinitely sharp (groundCreases), refined
+// `levels` times uniformly by Catmull-Clark. Throws std::invalid_argument if
+// OpenSubdiv refuses the topology.
+std::unique_ptr<Far::TopologyRefiner> refineTopology(const SurfaceMesh& mesh, int levels) {
+  const std::size_t nf = mesh.triangles.size() + mesh.quads.size();
+  std::vector<int> verts_per_face;
+  std::vector<Far::Index> indices;
+  verts_per_face.reserve(nf);
+  indices.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
+  for (const auto& t : mesh.triangles) {
+    verts_per_face.push_back(3);
+    indices.insert(indices.end(), t.begin(), t.end());
+  }
+  for (const auto& q : mesh.quads) {
+    verts_per_face.push_back(4);
+    indices.insert(indices.end(), q.begin(), q.end());
+  }
+  const std::vector<Far::Index> crease_pairs = groundCreases(mesh);
+  const std::vector<float> crease_weights(crease_pairs.size() / 2, Sdc::Crease::SHARPNESS_INFINITE);
+
+  Far::TopologyDescriptor desc;
+  desc.numVertices = int(mesh.positions.size());
+  desc.numFaces = int(nf);
+  desc.numVertsPerFace = verts_per_face.data();
+  desc.vertIndicesPerFace = indices.data();
+  desc.numCreases = int(crease_weights.size());
+  desc.creaseVertexIndexPairs = crease_pairs.data();
+  desc.creaseWeights = crease_weights.data();
+
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
+  if (!refiner) throw std::invalid_argument("OpenSubdiv refused the " + mesh.name + " mesh's topology");
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(levels));
+  return refiner;
+}
+
+// The position and the four baked attributes of every vertex of the
+// refiner's last level (an absent attribute refines its default).
+std::vector<Primvars> refinePrimvars(const SurfaceMesh& mesh, const Far::TopologyRefiner& refiner) {
+  // Primvars of every level, one buffer: level 0 first, each level after the previous.
+  std::vector<Primvars> buffer(std::size_t(refiner.GetNumVerticesTotal()));
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const auto& p = mesh.positions[i];
+    buffer[i] = {{p[0], p[1], p[2], mesh.durability.empty() ? 0.0f : mesh.durability[i],
+                  mesh.colluvium.empty() ? 0.0f : mesh.colluvium[i], mesh.curvature.empty() ? 0.5f : mesh.curvature[i],
+                  mesh.altitude.empty() ? 0.0f : mesh.altitude[i]}};
+  }
+  Far::PrimvarRefiner primvars(refiner);
+  Primvars* src = buffer.data();
+  for (int level = 1; level <= refiner.GetMaxLevel(); ++level) {
+    Primvars* dst = src + refiner.GetLevel(level - 1).GetNumVertices();
+    primvars.Interpolate(level, src, dst);
+    src = dst;
+  }
+  return {src, buffer.data() + buffer.size()};
+}
+
+// The refiner's last level as a quad mesh with positions and attributes.
+SurfaceMesh refinedMesh(const Far::TopologyRefiner& refiner, const std::vector<Primvars>& vertices) {
+  const Far::TopologyLevel& last = refiner.GetLevel(refiner.GetMaxLevel());
+  const std::size_t n = std::size_t(last.GetNumVertices());
+  SurfaceMesh out;
+  out.positions.resize(n);
+  out.durability.resize(n);
+  out.colluvium.resize(n);
+  out.curvature.resize(n);
+  out.altitude.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* v = vertices[i].v;
+    out.positions[i] = {v[0], v[1], v[2]};
+    out.durability[i] = v[3], out.colluvium[i] = v[4], out.curvature[i] = v[5], out.altitude[i] = v[6];
+  }
+  out.quads.reserve(std::size_t(last.GetNumFaces()));
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto fv = last.GetFaceVertices(f);
+    if (fv.size() != 4) throw std::logic_error("Catmull-Clark refinement produced a non-quad face");
+    out.quads.push_back({std::uint32_t(fv[0]), std::uint32_t(fv[1]), std::uint32_t(fv[2]), std::uint32_t(fv[3])});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::size_t catmullClarkVertexCount(std::size_t vertices, std::size_t triangles, std::size_t quads, int levels) {
@@ -98,7 +181,6 @@ SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& par
   if (params.levels < 0 || params.levels > 3)
     throw std::invalid_argument("mesh.subdivision must be 0..3, got " + std::to_string(params.levels));
   SurfaceMesh out;
-  out.name = mesh.name;
   if (params.levels == 0 || mesh.positions.empty()) {
     out.positions = mesh.positions;
     out.triangles = mesh.triangles;
@@ -107,78 +189,11 @@ SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& par
     out.colluvium = mesh.colluvium;
     out.curvature = mesh.curvature;
     out.altitude = mesh.altitude;
-    splitQuads(out);
-    computeVertexNormals(out);
-    return out;
+  } else {
+    const std::unique_ptr<Far::TopologyRefiner> refiner = refineTopology(mesh, params.levels);
+    out = refinedMesh(*refiner, refinePrimvars(mesh, *refiner));
   }
-
-  const std::size_t nv = mesh.positions.size();
-  const std::size_t nf = mesh.triangles.size() + mesh.quads.size();
-  std::vector<int> verts_per_face;
-  std::vector<Far::Index> indices;
-  verts_per_face.reserve(nf);
-  indices.reserve(3 * mesh.triangles.size() + 4 * mesh.quads.size());
-  for (const auto& t : mesh.triangles) {
-    verts_per_face.push_back(3);
-    indices.insert(indices.end(), t.begin(), t.end());
-  }
-  for (const auto& q : mesh.quads) {
-    verts_per_face.push_back(4);
-    indices.insert(indices.end(), q.begin(), q.end());
-  }
-  const std::vector<Far::Index> crease_pairs = groundCreases(mesh);
-  const std::vector<float> crease_weights(crease_pairs.size() / 2, Sdc::Crease::SHARPNESS_INFINITE);
-
-  Far::TopologyDescriptor desc;
-  desc.numVertices = int(nv);
-  desc.numFaces = int(nf);
-  desc.numVertsPerFace = verts_per_face.data();
-  desc.vertIndicesPerFace = indices.data();
-  desc.numCreases = int(crease_weights.size());
-  desc.creaseVertexIndexPairs = crease_pairs.data();
-  desc.creaseWeights = crease_weights.data();
-
-  Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
-  if (!refiner) throw std::invalid_argument("OpenSubdiv refused the " + mesh.name + " mesh's topology");
-  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(params.levels));
-
-  // Primvars of every level, one buffer: level 0 first, each level after the previous.
-  std::vector<Primvars> buffer(std::size_t(refiner->GetNumVerticesTotal()));
-  for (std::size_t i = 0; i < nv; ++i) {
-    const auto& p = mesh.positions[i];
-    buffer[i] = {{p[0], p[1], p[2], mesh.durability.empty() ? 0.0f : mesh.durability[i],
-                  mesh.colluvium.empty() ? 0.0f : mesh.colluvium[i], mesh.curvature.empty() ? 0.5f : mesh.curvature[i],
-                  mesh.altitude.empty() ? 0.0f : mesh.altitude[i]}};
-  }
-  Far::PrimvarRefiner primvars(*refiner);
-  Primvars* src = buffer.data();
-  for (int level = 1; level <= params.levels; ++level) {
-    Primvars* dst = src + refiner->GetLevel(level - 1).GetNumVertices();
-    primvars.Interpolate(level, src, dst);
-    src = dst;
-  }
-
-  const Far::TopologyLevel& last = refiner->GetLevel(params.levels);
-  const std::size_t n = std::size_t(last.GetNumVertices());
-  out.positions.resize(n);
-  out.durability.resize(n);
-  out.colluvium.resize(n);
-  out.curvature.resize(n);
-  out.altitude.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* v = src[i].v;
-    out.positions[i] = {v[0], v[1], v[2]};
-    out.durability[i] = v[3], out.colluvium[i] = v[4], out.curvature[i] = v[5], out.altitude[i] = v[6];
-  }
-  out.quads.reserve(std::size_t(last.GetNumFaces()));
-  for (int f = 0; f < last.GetNumFaces(); ++f) {
-    const auto fv = last.GetFaceVertices(f);
-    if (fv.size() != 4) throw std::logic_error("Catmull-Clark refinement produced a non-quad face");
-    out.quads.push_back({std::uint32_t(fv[0]), std::uint32_t(fv[1]), std::uint32_t(fv[2]), std::uint32_t(fv[3])});
-  }
+  out.name = mesh.name;
   splitQuads(out);
   computeVertexNormals(out);
   return out;
