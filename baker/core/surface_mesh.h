@@ -5,9 +5,9 @@
 // that adds, drops, reorders or copies vertices (core/vertex_remap.h: remap,
 // compaction, welding, splitting) carries each array listed there, and each
 // must be empty or hold one value per position. Adding a per-vertex array to
-// SurfaceMesh means adding it to kVertexArrays too; the static_assert at the
-// end of this file fails until it is listed there (or, for anything not per
-// vertex, in the assertion itself).
+// SurfaceMesh means adding it to kVertexArrays too; the static_assert below
+// the list fails until it is listed there (or, for anything not per vertex,
+// in the assertion itself).
 #pragma once
 
 #include <array>

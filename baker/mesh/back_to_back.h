@@ -1,7 +1,7 @@
-// Back-to-back pairs (docs/meshes.md): collapsing a thin part can leave two
-// coincident triangles of opposite winding glued back to back (each of their
-// edges then has four faces). Removing both restores edge-manifoldness; the
-// surface is pinched there, as the collapse intended.
+// Back-to-back pairs (docs/meshes.md, The repairs): collapsing a thin part
+// can leave two coincident triangles of opposite winding glued back to back
+// (each of their edges then has four faces). Removing both restores
+// edge-manifoldness; the surface is pinched there, as the collapse intended.
 //
 // Takes a triangle index buffer (three indices a triangle, meshoptimizer's).
 // Within each set of triangles on the same three vertices, each triangle is

@@ -1,6 +1,6 @@
-// Speck removal (docs/meshes.md): at a LOD's budget, a speck of debris (a lone
-// colluvium voxel) simplifies to a handful of triangles lying flat on each
-// other, which no flip or move can open again.
+// Speck removal (docs/meshes.md, The LOD chain and its budgets): at a LOD's
+// budget, a speck of debris (a lone colluvium voxel) simplifies to a handful
+// of triangles lying flat on each other, which no flip or move can open again.
 //
 // Takes a closed triangle mesh. Removes every connected piece (triangles
 // joined through shared vertices) of at most `max_triangles` triangles that

@@ -1,7 +1,7 @@
-// Fold-over repair (docs/meshes.md): removes fold-overs and zero-area
-// triangles (mesh_defects.h's isDefective) from a closed, consistently
-// oriented, edge-manifold triangle mesh, first by flipping edges, then by
-// collapsing what flips cannot fix.
+// Fold-over repair (docs/meshes.md, The repairs): removes fold-overs and
+// zero-area triangles (mesh_defects.h's isDefective) from a closed,
+// consistently oriented, edge-manifold triangle mesh, first by flipping
+// edges, then by collapsing what flips cannot fix.
 //
 // A flip turns a triangle and its neighbour across an edge into the two
 // triangles across the quad's other diagonal, when both new triangles have

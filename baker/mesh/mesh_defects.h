@@ -1,5 +1,6 @@
-// The check a studio runs on a shipped mesh (docs/meshes.md): every LOD
-// closed, 2-manifold, outward, with no fold-overs and no zero-area triangles.
+// The check a studio runs on a shipped mesh (docs/meshes.md, What every mesh
+// is): every LOD closed, 2-manifold, outward, with no fold-overs and no
+// zero-area triangles.
 //
 // Takes a triangle mesh (quads are ignored) and changes nothing; gives the
 // counts and the vertices involved. isDefective is the one test of a bad

@@ -1,6 +1,6 @@
-// Relaxing what the fold-over repair leaves (docs/meshes.md), on a mesh with
-// no error bound to keep (a LOD simplified to a triangle budget): moves
-// vertices, never topology.
+// Relaxing what the fold-over repair leaves (docs/meshes.md, The LOD chain
+// and its budgets), on a mesh with no error bound to keep (a LOD simplified to
+// a triangle budget): moves vertices, never topology.
 //
 // Takes a closed, consistently oriented, edge-manifold triangle mesh. Each
 // vertex of a defective triangle (mesh_defects.h's isDefective), in index

@@ -1,9 +1,9 @@
-// Levels of detail (docs/meshes.md): the LOD chain. Each surface is simplified
-// by meshoptimizer's edge collapse in passes (simplify_pass.h), borders
-// locked; meshoptimizer only removes vertices, so every vertex of a LOD lies on
-// the surface it was simplified from and keeps its values in every per-vertex
-// array; normals recomputed. LOD0 is simplified to an error bound, the further
-// LODs to triangle budgets.
+// Levels of detail (docs/meshes.md, LOD0 and its bound; The LOD chain and
+// its budgets). Each surface is simplified by meshoptimizer's edge collapse
+// in passes (simplify_pass.h), borders locked; meshoptimizer only removes
+// vertices, so every vertex of a LOD lies on the surface it was simplified
+// from and keeps its values in every per-vertex array; normals recomputed.
+// LOD0 is simplified to an error bound, the further LODs to triangle budgets.
 //
 // meshoptimizer does not keep manifoldness by itself: each pass cuts glued
 // sheets apart and repairs fold-overs (simplify_pass.h). Where a collapse

@@ -1,4 +1,4 @@
-// One simplification pass of the LOD chain (docs/meshes.md; simplify_lods.h
+// One simplification pass (docs/meshes.md, The repairs; simplify_lods.h
 // runs the passes): meshoptimizer's edge collapse on the triangles not
 // locked, their border with the locked ones held in place, then the
 // simplifier's damage repaired as far as it can be.

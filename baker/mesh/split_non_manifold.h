@@ -1,8 +1,8 @@
-// Cutting glued sheets apart (docs/meshes.md): meshoptimizer does not check
-// the link condition, so a collapse can glue two sheets together along an
-// edge (more than one face each way) or pinch them together at a vertex.
-// Each sheet then gets its own copies of the vertices there; nothing moves
-// (the copies coincide with their originals).
+// Cutting glued sheets apart (docs/meshes.md, The repairs): meshoptimizer
+// does not check the link condition, so a collapse can glue two sheets
+// together along an edge (more than one face each way) or pinch them together
+// at a vertex. Each sheet then gets its own copies of the vertices there;
+// nothing moves (the copies coincide with their originals).
 //
 // Where an undirected edge carries k faces each way (k > 1), each outgoing
 // face is paired with an incoming one: its neighbour around the edge across
