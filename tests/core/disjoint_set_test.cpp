@@ -25,20 +25,22 @@ TEST(DisjointSet, UnitesAndReportsWhatItJoined) {
   EXPECT_FALSE(s.connected(1, 2));
   EXPECT_TRUE(s.unite(3, 1));
   EXPECT_TRUE(s.connected(0, 2));
-  EXPECT_EQ(s.setSize(3), 4u);
-  EXPECT_EQ(s.setSize(5), 1u);
   EXPECT_EQ(s.labels(), (std::vector<std::uint32_t>{0, 0, 0, 0, 1, 2}));
 }
 
-TEST(DisjointSet, TheLargerSetKeepsItsRootAndTiesKeepTheLowerRoot) {
-  DisjointSet s(5);
-  s.unite(4, 3);  // a tie: 3 stays the root
+TEST(DisjointSet, TheHigherRankKeepsItsRootAndTiesKeepTheLowerRoot) {
+  DisjointSet s(6);
+  s.unite(4, 3);  // a tie: 3 stays the root, of rank 1
   EXPECT_EQ(s.find(4), 3u);
-  s.unite(0, 3);  // {3, 4} is larger: 3 stays the root
+  s.unite(0, 3);  // rank 0 under rank 1
   EXPECT_EQ(s.find(0), 3u);
-  s.unite(1, 2);
-  s.unite(2, 4);  // {0, 3, 4} is larger than {1, 2}
-  EXPECT_EQ(s.find(1), 3u);
+  s.unite(2, 1);  // a tie: 1 stays the root, of rank 1
+  EXPECT_EQ(s.find(2), 1u);
+  s.unite(4, 2);  // roots 3 and 1 tie at rank 1: 1, the lower, stays, of rank 2
+  EXPECT_EQ(s.find(3), 1u);
+  EXPECT_EQ(s.find(0), 1u);
+  s.unite(5, 0);  // rank 0 under rank 2
+  EXPECT_EQ(s.find(5), 1u);
 }
 
 // Labels number the sets by their smallest elements, whatever the order of
@@ -72,8 +74,7 @@ TEST(DisjointSet, LabelsDoNotDependOnTheOrderOfTheUnions) {
     ++count;
   }
   EXPECT_EQ(labels, expected);
-  for (std::uint32_t x = 0; x < n; ++x)
-    EXPECT_EQ(forward.setSize(x), std::count(expected.begin(), expected.end(), expected[x])) << x;
+  for (std::uint32_t x = 0; x < n; ++x) EXPECT_EQ(forward.connected(x, 0), expected[x] == expected[0]) << x;
 }
 
 TEST(DisjointSet, RefusesMoreElementsThanItsIndexHolds) {
