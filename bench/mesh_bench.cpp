@@ -208,7 +208,7 @@ BENCHMARK(BM_MeshStage)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_EdgeTable)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_CheckMesh)->Unit(benchmark::kMillisecond)->Iterations(5);
 BENCHMARK(BM_RepairFoldOvers)->Unit(benchmark::kMillisecond)->Iterations(5);
-BENCHMARK(BM_MeshLods)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_MeshLods)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace rockbake
