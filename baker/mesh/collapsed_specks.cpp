@@ -12,6 +12,7 @@
 namespace rockbake {
 
 std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles) {
+  requireVertexArrays(mesh);  // before a triangle is dropped, not at the compaction
   const std::vector<std::uint32_t> piece = pieceOfVertex(mesh);
   const EdgeTable edges(mesh.triangles);
   std::vector<std::size_t> size(mesh.positions.size(), 0);

@@ -7,7 +7,9 @@
 // holds a defective triangle (mesh_defects.h's isDefective), with its
 // vertices and their values in every per-vertex array (core/vertex_remap.h);
 // the rest is kept in order, and the mesh stays closed. Normals recomputed
-// when anything went. Returns the triangles removed. Deterministic.
+// when anything went. Returns the triangles removed. Deterministic. A
+// per-vertex array neither empty nor vertex-sized: std::logic_error, before
+// anything changes.
 #pragma once
 
 #include <cstddef>

@@ -194,6 +194,7 @@ bool collapseDefects(SurfaceMesh& mesh, const std::vector<std::uint32_t>& bad) {
 }  // namespace
 
 std::size_t repairFoldOvers(SurfaceMesh& mesh) {
+  requireVertexArrays(mesh);  // before a flip changes anything, not at the first compaction
   std::size_t left = 0;
   for (int round = 0; round < 6; ++round) {
     Flips flips(mesh);

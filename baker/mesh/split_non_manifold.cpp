@@ -128,6 +128,7 @@ std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices, const
 }
 
 std::size_t splitNonManifold(SurfaceMesh& mesh) {
+  requireVertexArrays(mesh);  // before a triangle is pointed at a copy
   std::vector<unsigned int> indices;
   indices.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());

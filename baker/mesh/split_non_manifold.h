@@ -16,7 +16,9 @@
 // vertex (in corner order) gets its own copy of the vertex.
 //
 // Every edge must be used as often each way (as collapsing a closed mesh
-// leaves it); an edge that is not stays open. Deterministic.
+// leaves it); an edge that is not stays open. Deterministic. splitNonManifold
+// throws std::logic_error, before anything changes, for a per-vertex array
+// neither empty nor vertex-sized.
 #pragma once
 
 #include <cstddef>
