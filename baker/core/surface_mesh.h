@@ -58,6 +58,8 @@ inline constexpr std::tuple kVertexArrays{
     VertexArray<float>{"curvature", &SurfaceMesh::curvature},
     VertexArray<float>{"altitude", &SurfaceMesh::altitude},
     VertexArray<std::array<float, 3>>{"colors", &SurfaceMesh::colors},
+    VertexArray<std::array<float, 2>>{"uvs", &SurfaceMesh::uvs},
+    VertexArray<std::array<float, 4>>{"tangents", &SurfaceMesh::tangents},
 };
 
 // Calls visit(name, array) for each array in kVertexArrays, in order; `Mesh`

@@ -23,14 +23,19 @@ float tag(std::size_t k, std::uint32_t v) {
 void setTag(float& value, std::size_t k, std::uint32_t v) {
   value = tag(k, v);
 }
-void setTag(std::array<float, 3>& value, std::size_t k, std::uint32_t v) {
-  value = {tag(k, v), -tag(k, v), 0.5f};
+// Arrays of any width: component c holds tag + c, so a swapped component shows.
+template <std::size_t N>
+void setTag(std::array<float, N>& value, std::size_t k, std::uint32_t v) {
+  for (std::size_t c = 0; c < N; ++c) value[c] = tag(k, v) + float(c) / 8;
 }
 bool hasTag(float value, std::size_t k, std::uint32_t v) {
   return value == tag(k, v);
 }
-bool hasTag(const std::array<float, 3>& value, std::size_t k, std::uint32_t v) {
-  return value == std::array<float, 3>{tag(k, v), -tag(k, v), 0.5f};
+template <std::size_t N>
+bool hasTag(const std::array<float, N>& value, std::size_t k, std::uint32_t v) {
+  std::array<float, N> expected;
+  setTag(expected, k, v);
+  return value == expected;
 }
 
 // Every per-vertex array filled, each value naming its array and vertex;
@@ -70,7 +75,7 @@ TEST(VertexRemap, EveryArrayIsListedOnceWithItsName) {
   std::vector<std::string> names;
   forEachVertexArray(m, [&](const char* name, const auto&) { names.push_back(name); });
   EXPECT_EQ(names, (std::vector<std::string>{"positions", "normals", "durability", "colluvium", "curvature", "altitude",
-                                             "colors"}));
+                                             "colors", "uvs", "tangents"}));
 }
 
 TEST(VertexRemap, GatherCarriesEveryArray) {
