@@ -315,8 +315,9 @@ void ConnectionLoop::Impl::readFrom(Connection& c) {
   std::array<char, 16384> chunk;
   while (c.phase == Connection::Phase::Reading) {
     // Never past the request: its headers' limit until they are whole, then its length.
-    const std::size_t limit =
-        c.framing.header_bytes ? c.framing.requestBytes() : limits.max_header_bytes + limits.max_body_bytes;
+    const std::size_t limit = !c.framing.header_bytes ? limits.max_header_bytes + limits.max_body_bytes
+                              : c.framing.chunked     ? c.framing.header_bytes + maxBodyWireBytes(framing_limits) + 1
+                                                      : c.framing.requestBytes();
     const std::size_t want = std::min(chunk.size(), limit - std::min(limit, c.in.size()));
     const ssize_t n = want ? ::recv(c.fd, chunk.data(), want, 0) : 0;
     if (n > 0) {
@@ -333,25 +334,32 @@ void ConnectionLoop::Impl::readFrom(Connection& c) {
 
 // Judges what has arrived; false once the connection has left the Reading phase.
 bool ConnectionLoop::Impl::advance(Connection& c) {
-  if (!c.framing.header_bytes) {
-    c.framing = frameRequest(c.in, framing_limits);
-    if (c.framing.state == Framing::State::Refused) {
-      refuse(c, c.framing.status, c.framing.message, /*drain=*/true);
-      return false;
-    }
-    if (!c.framing.header_bytes) return true;
-    if (buffered + c.framing.content_length > limits.max_buffered_bytes) {
+  const bool had_headers = c.framing.header_bytes > 0;
+  if (had_headers && !c.framing.chunked) {
+    if (c.in.size() < c.framing.requestBytes()) return true;
+    enqueue(c);
+    return false;
+  }
+  c.framing = frameRequest(c.in, framing_limits);  // a chunked body is judged afresh as it grows
+  if (c.framing.state == Framing::State::Refused) {
+    refuse(c, c.framing.status, c.framing.message, /*drain=*/true);
+    return false;
+  }
+  if (!c.framing.header_bytes) return true;
+  if (!had_headers) {
+    const std::size_t body = c.framing.chunked ? maxBodyWireBytes(framing_limits) : c.framing.content_length;
+    if (buffered + body > limits.max_buffered_bytes) {
       refuse(c, 503, "the server is busy reading other requests' bodies; try again in a moment", true);
       return false;
     }
-    c.reserved = c.framing.content_length;
-    buffered += c.reserved;
-    if (c.framing.expect_continue && c.in.size() < c.framing.requestBytes()) {
+    c.reserved = body;
+    buffered += body;
+    if (c.framing.expect_continue && c.framing.state != Framing::State::Complete) {
       static const std::string kContinue = "HTTP/1.1 100 Continue\r\n\r\n";
       [[maybe_unused]] const ssize_t n = ::send(c.fd, kContinue.data(), kContinue.size(), MSG_NOSIGNAL);
     }
   }
-  if (c.in.size() < c.framing.requestBytes()) return true;
+  if (c.framing.state != Framing::State::Complete) return true;
   enqueue(c);
   return false;
 }

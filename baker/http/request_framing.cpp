@@ -62,8 +62,12 @@ Framing readHeaders(std::string_view block, const FramingLimits& limits) {
     const std::size_t colon = line.find(':');
     if (colon == std::string_view::npos) continue;  // not a header; cpp-httplib skips it too
     const std::string_view name = line.substr(0, colon), value = trimmed(line.substr(colon + 1));
-    if (sameName(name, "transfer-encoding"))
-      return refused(411, "send the body with a Content-Length header (Transfer-Encoding is not accepted)");
+    if (sameName(name, "transfer-encoding")) {
+      if (!sameName(value, "chunked"))
+        return refused(
+            501, "Transfer-Encoding '" + std::string(value) + "' is not accepted; send chunked or a Content-Length");
+      f.chunked = true;
+    }
     if (sameName(name, "expect")) f.expect_continue = sameName(value, "100-continue");
     if (!sameName(name, "content-length")) continue;
     const std::optional<std::size_t> n = decimal(value);
@@ -71,6 +75,7 @@ Framing readHeaders(std::string_view block, const FramingLimits& limits) {
       return refused(400, "the request's Content-Length is not one whole number of bytes");
     length = n;
   }
+  if (f.chunked && length) return refused(400, "the request has both Content-Length and Transfer-Encoding");
   f.content_length = length.value_or(0);
   if (f.content_length > limits.max_body_bytes)
     return refused(413, fmt::format("the request body is {} bytes; the server takes at most {}", f.content_length,
@@ -78,7 +83,51 @@ Framing readHeaders(std::string_view block, const FramingLimits& limits) {
   return f;
 }
 
+// A chunked body (RFC 9112 §7.1) from its start: Complete with its wire length
+// once the last chunk and the trailers have arrived.
+Framing frameChunks(std::string_view body, const FramingLimits& limits, Framing f) {
+  std::size_t at = 0, decoded = 0;
+  bool trailers = false;  // after the last chunk: header lines up to an empty one
+  for (;;) {
+    if (at > maxBodyWireBytes(limits))
+      return refused(413, "the request body's chunks are too small (their framing is over " +
+                              mib(limits.max_body_bytes) + "); send larger chunks or a Content-Length");
+    const std::size_t end = body.find("\r\n", at);
+    if (end == std::string_view::npos) return f;  // NeedMore
+    const std::string_view line = body.substr(at, end - at);
+    at = end + 2;
+    if (trailers) {
+      if (line.empty()) break;
+      continue;
+    }
+    const std::string_view digits = trimmed(line.substr(0, line.find(';')));
+    std::size_t size = 0;
+    if (digits.empty() || digits.size() > 8 ||
+        !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); }))
+      return refused(400, "the request's chunked body is malformed");
+    for (const char c : digits)
+      size =
+          size * 16 + std::size_t(std::isdigit(static_cast<unsigned char>(c)) ? c - '0' : std::tolower(c) - 'a' + 10);
+    if (size == 0) {
+      trailers = true;
+      continue;
+    }
+    if ((decoded += size) > limits.max_body_bytes)
+      return refused(413, "the request body is over " + mib(limits.max_body_bytes) + ", the most the server takes");
+    if (body.size() < at + size + 2) return f;  // NeedMore
+    if (body.substr(at + size, 2) != "\r\n") return refused(400, "the request's chunked body is malformed");
+    at += size + 2;
+  }
+  f.content_length = at;
+  f.state = Framing::State::Complete;
+  return f;
+}
+
 }  // namespace
+
+std::size_t maxBodyWireBytes(const FramingLimits& limits) {
+  return 2 * limits.max_body_bytes + 4096;
+}
 
 Framing frameRequest(std::string_view received, const FramingLimits& limits) {
   const std::size_t search = std::min(received.size(), limits.max_header_bytes);
@@ -95,6 +144,7 @@ Framing frameRequest(std::string_view received, const FramingLimits& limits) {
   }
   Framing f = readHeaders(block, limits);
   if (f.state == Framing::State::Refused) return f;
+  if (f.chunked) return frameChunks(received.substr(f.header_bytes), limits, f);
   f.state = received.size() >= f.requestBytes() ? Framing::State::Complete : Framing::State::NeedMore;
   return f;
 }

@@ -1,11 +1,8 @@
 #include "studio/studio_session.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -15,12 +12,12 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "export/vdb_file.h"
-#include "mesh/bake_attributes.h"
-#include "mesh/extract_surfaces.h"
 #include "pipeline/manifest.h"
+#include "pipeline/preview_mesh.h"
 #include "pipeline/read_inputs.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "preset/yaml_text.h"
 #include "sim/grid_layout.h"
 #include "sim/shapes.h"
 
@@ -35,12 +32,12 @@ constexpr int kMaxExtraCycles = 10000;
 // In-memory checkpoints on the timeline: about this many over the preset's time.
 constexpr int kCheckpointsPerRun = 16;
 
-std::string readText(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string()}, "", "cannot be read", "check the path and its permissions");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// The preset's text, read as `lint` and `bake` read a preset (preset/yaml_text.h):
+// a FIFO, a device or a file over 1 MiB is refused before it is read.
+std::string readPresetText(const fs::path& file) {
+  std::optional<std::string> text = readYamlFile(file.string(), "a preset");
+  if (!text) throw InputError({file.string()}, "", "cannot read the preset file", "check the path");
+  return std::move(*text);
 }
 
 // The keyframe parts a studio edit touches.
@@ -121,9 +118,12 @@ void appendMesh(std::string& out, const SurfaceMesh& m) {
 
 }  // namespace
 
-StudioSession::StudioSession(const fs::path& preset_file, int resolution)
-    : file_(preset_file), original_text_(readText(preset_file)), resolution_(resolution) {
-  own_resolution_ = loadPreset(file_).grid.resolution;
+StudioSession::StudioSession(const fs::path& preset_file, int resolution, CheckpointBounds checkpoint_bounds)
+    : file_(preset_file),
+      original_text_(readPresetText(preset_file)),
+      resolution_(resolution),
+      checkpoints_(checkpoint_bounds) {
+  own_resolution_ = parsePreset(original_text_, file_).grid.resolution;
   preset_ = parsePreset(original_text_, file_, {{}, std::nullopt, resolution_});
   shape_ = readInputs(preset_);
   restart();
@@ -143,20 +143,22 @@ void StudioSession::restart() {
   VoxelRock initial = buildInitialRock(shape_, preset_);
   initial_rock_ = initial.count(Material::Rock);
   end_cycle_ = plannedCycles(preset_, initial.layout.h);
+  sim_.reset();
   sim_ = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
-  checkpoints_.clear();
+  checkpoints_.restart(sim_->snapshot(), checkpointSpacing());
   history_.clear();
-  keepCheckpoint();
   ++rock_version_;
 }
 
-void StudioSession::keepCheckpoint() {
-  checkpoints_.insert_or_assign(sim_->cycle(), sim_->snapshot());
+int StudioSession::checkpointSpacing() const {
+  return std::max(1, end_cycle_ / kCheckpointsPerRun);
 }
 
-void StudioSession::restore(int cycle) {
-  sim_ = std::make_unique<WeatheringSimulation>(checkpoints_.at(cycle), simParams());
-  history_.resize(std::size_t(cycle));
+void StudioSession::restore(const SimulationSnapshot& checkpoint) {
+  SimulationSnapshot copy = checkpoint;
+  sim_.reset();  // first: with memory short, the old simulation's is what the new one needs
+  sim_ = std::make_unique<WeatheringSimulation>(std::move(copy), simParams());
+  history_.resize(std::size_t(sim_->cycle()));
   ++rock_version_;
 }
 
@@ -178,16 +180,26 @@ bool StudioSession::atEnd() const {
 
 CycleStats StudioSession::step() {
   if (finished()) return {};
-  const CycleStats stats = sim_->step();
-  history_.push_back({stats.time, stats.rock, stats.exposed, stats.colluvium});
-  const int every = std::max(1, end_cycle_ / kCheckpointsPerRun);
-  if (stats.cycle % every == 0) keepCheckpoint();
-  ++rock_version_;
-  return stats;
+  const int from = cycle();
+  try {
+    const CycleStats stats = sim_->step();
+    history_.push_back({stats.time, stats.rock, stats.exposed, stats.colluvium});
+    ++rock_version_;
+    if (checkpoints_.wants(stats.cycle)) checkpoints_.keep(sim_->snapshot());
+    return stats;
+  } catch (const std::bad_alloc&) {
+    // A cycle cut short may have left the simulation half-done: back to the latest checkpoint.
+    restore(checkpoints_.atOrBefore(from));
+    throw StudioError(503, fmt::format("out of memory running the cycle after time {:.4g}: the studio went back to "
+                                       "time {:.4g} and carries on from there; close other programs or restart the "
+                                       "studio at a lower --resolution",
+                                       from * h(), time()));
+  }
 }
 
 void StudioSession::reset() {
-  restore(0);
+  restore(checkpoints_.atOrBefore(0));
+  checkpoints_.restart(sim_->snapshot(), checkpointSpacing());
 }
 
 int StudioSession::cycleAt(double t) const {
@@ -204,9 +216,8 @@ void StudioSession::seek(double t) {
   const int target = cycleAt(t);
   // The latest checkpoint at or before the target; restore it when it is ahead of
   // the simulation (a shortcut forward) or when the target lies behind it.
-  auto it = checkpoints_.upper_bound(target);
-  --it;  // cycle 0 is always there
-  if (target < cycle() || it->first > cycle()) restore(it->first);
+  const SimulationSnapshot& nearest = checkpoints_.atOrBefore(target);
+  if (target < cycle() || nearest.cycle > cycle()) restore(nearest);
   while (cycle() < target && !finished()) step();
 }
 
@@ -294,7 +305,7 @@ void StudioSession::edit(const json& part) {
   }
   preset_ = std::move(candidate);
   sim_->setKeyframes(preset_.durability.keyframes);
-  std::erase_if(checkpoints_, [&](const auto& entry) { return entry.first > cycle(); });
+  checkpoints_.dropAfter(cycle());
 }
 
 json StudioSession::state() const {
@@ -317,7 +328,7 @@ json StudioSession::state() const {
   json history = json::array();
   for (const auto& e : history_) history.push_back({e.time, e.rock});
   json checkpoints = json::array();
-  for (const auto& [c, snapshot] : checkpoints_) checkpoints.push_back(c * h());
+  for (const int c : checkpoints_.cycles()) checkpoints.push_back(c * h());
   const GridLayout& g = sim_->rock().layout;
   const SimulationCounts counts = sim_->counts();
   return {{"cycle", cycle()},
@@ -335,6 +346,7 @@ json StudioSession::state() const {
           {"grid", {{"nx", g.nx}, {"ny", g.ny}, {"nz", g.nz}, {"h", g.h}, {"margin", g.margin}}},
           {"history", history},
           {"checkpoints", checkpoints},
+          {"checkpoint_bytes", checkpoints_.bytes()},
           {"mesh_version", rock_version_},
           {"preset", presetToJson(preset_)},
           {"active",
@@ -344,28 +356,13 @@ json StudioSession::state() const {
 }
 
 std::string StudioSession::rockVdb() const {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("rockbake-studio-{}", ::getpid());
-  fs::create_directories(dir);
-  const fs::path file = dir / "rock.vdb";
-  writeRockVdb(sim_->rock(), file);
-  std::string bytes = readText(file);
-  fs::remove(file);
-  return bytes;
+  std::ostringstream out;
+  writeRockVdb(sim_->rock(), out);
+  return std::move(out).str();
 }
 
-std::string StudioSession::previewMesh(PreviewPalette palette) const {
-  const VoxelRock& rock = sim_->rock();
-  AssetMeshes meshes = extractSurfaces(rock, {preset_.mesh.smoothing, /*preview=*/true});
-  // Curvature costs a bubble count per exposed voxel: only when it is shown.
-  const std::vector<float> exposure = palette == PreviewPalette::Curvature
-                                          ? exposureField(rock, sim_->activeParams())
-                                          : std::vector<float>(rock.layout.cellCount(), 0.5f);
-  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  PaletteParams params = paletteParams(rock, preset_.bake);
-  params.palette = palette == PreviewPalette::Natural      ? Palette::Natural
-                   : palette == PreviewPalette::Durability ? Palette::Debug
-                                                           : Palette::Curvature;
-  meshes = applyPalette(std::move(meshes), params);
+std::string StudioSession::previewMesh(Palette palette) const {
+  const AssetMeshes meshes = previewMeshes(sim_->rock(), preset_, sim_->activeParams(), palette);
   std::string out = "RBPM";
   appendU32(out, 1);
   appendU32(out, std::uint32_t(cycle()));
@@ -403,9 +400,11 @@ Preset StudioSession::finalPreset() const {
 }
 
 SaveResult StudioSession::save(const std::string& name, bool overwrite) {
-  static const std::regex kName("[a-z0-9_-]{1,64}");
+  // Not starting with '-': `rockbake lint *.yaml` would read a file named -x.yaml as an option.
+  static const std::regex kName("[a-z0-9_][a-z0-9_-]{0,63}");
   if (!std::regex_match(name, kName))
-    throw StudioError(400, "name: '" + name + "' is not an asset name: use 1 to 64 of a-z, 0-9, _ and -");
+    throw StudioError(400, "name: '" + escapeControlBytes(name) +
+                               "' is not a save name: use 1 to 64 of a-z, 0-9, _ and -, not starting with -");
   if (cycle() == 0)
     throw StudioError(409, "run at least one cycle before saving: a saved preset bakes at least one cycle");
   const fs::path folder = file_.parent_path();

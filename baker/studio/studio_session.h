@@ -1,8 +1,8 @@
 // The studio's model (docs/studio.md): one preset simulated at a
 // preview resolution, cycle by cycle, with edits that become keyframes, a
-// timeline of in-memory checkpoints, save, and the state the page shows. No
-// HTTP here (studio_server.h serves it); not thread-safe: the server calls
-// it under one lock.
+// timeline of in-memory checkpoints (bounded: studio/checkpoint_timeline.h),
+// save, and the state the page shows. No HTTP here (studio/studio_routes.h
+// serves it); not thread-safe: the server calls it under one lock.
 //
 // The contract: save() writes a preset that `rockbake bake --no-mesh
 // --resolution <resolution>` turns into a rock.vdb byte-identical to
@@ -27,10 +27,12 @@
 #include "inputs/resolve_shape.h"
 #include "preset/preset.h"
 #include "sim/weathering.h"
+#include "studio/checkpoint_timeline.h"
 
 namespace rockbake {
 
-// A request the studio refuses (HTTP 4xx): `status` and a message that says what to do.
+// A request the studio refuses (HTTP 4xx, or 503 when memory ran out): `status`
+// and a message that says what to do.
 class StudioError : public std::runtime_error {
  public:
   StudioError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
@@ -40,8 +42,6 @@ class StudioError : public std::runtime_error {
   int status_;
 };
 
-enum class PreviewPalette { Natural, Durability, Curvature };
-
 struct SaveResult {
   std::filesystem::path path;
   double time = 0.0;
@@ -50,14 +50,19 @@ struct SaveResult {
 
 class StudioSession {
  public:
-  // Reads the preset with grid.resolution = `resolution` (InputError on a bad preset).
-  StudioSession(const std::filesystem::path& preset_file, int resolution);
+  // Reads the preset with grid.resolution = `resolution` (InputError on a bad
+  // preset, or on a file that is not a regular one of at most 1 MiB: a FIFO or
+  // a device is refused before it is read, as `rockbake lint` refuses it).
+  StudioSession(const std::filesystem::path& preset_file, int resolution, CheckpointBounds checkpoint_bounds = {});
   ~StudioSession();
 
-  CycleStats step();           // one cycle (a no-op at the simulation's hard end)
+  // One cycle (a no-op at the simulation's hard end). Out of memory, the
+  // simulation goes back to its latest checkpoint (a cycle cut short may have
+  // left it half-done) and StudioError 503 says so; the session carries on.
+  CycleStats step();
   bool atEnd() const;          // the preset's time reached, or its `until`: where play stops
   bool finished() const;       // nothing more can run (`until` reached)
-  void reset();                // back to time 0, keeping the edits
+  void reset();                // back to time 0, keeping the edits; only time 0's checkpoint stays
   void runUntil(double time);  // forward, or seek back first; rounds up to a whole cycle
   void seek(double time);      // restore the nearest checkpoint at or before, re-simulate to it
 
@@ -72,8 +77,8 @@ class StudioSession {
 
   nlohmann::json state() const;
   std::string rockVdb() const;  // rock.vdb bytes, as `bake --no-mesh` writes them
-  // The preview mesh (docs/studio.md binary format), level 0 smoothed as mesh.smoothing says.
-  std::string previewMesh(PreviewPalette palette) const;
+  // The preview mesh (pipeline/preview_mesh.h) in docs/studio.md's binary format.
+  std::string previewMesh(Palette palette) const;
 
   int cycle() const;
   double time() const;
@@ -84,8 +89,8 @@ class StudioSession {
 
  private:
   void restart();  // a new simulation from the initial rock, checkpoints and history cleared
-  void restore(int cycle);
-  void keepCheckpoint();
+  void restore(const SimulationSnapshot& checkpoint);
+  int checkpointSpacing() const;  // the timeline's first spacing: about kCheckpointsPerRun over the preset's time
   SimParams simParams() const;
   int cycleAt(double time) const;  // the whole cycle a time rounds up to
   std::string savedYaml(const std::string& name) const;
@@ -97,7 +102,7 @@ class StudioSession {
   Preset preset_;  // at the studio's resolution, with every edit
   ResolvedShape shape_;
   std::unique_ptr<WeatheringSimulation> sim_;
-  std::map<int, SimulationSnapshot> checkpoints_;  // by cycle
+  CheckpointTimeline checkpoints_;
   struct HistoryEntry {
     double time;
     std::size_t rock, exposed, colluvium;

@@ -121,7 +121,12 @@ TEST(LocalServer, RefusesDeepLargeAndMalformedRequestsAndCarriesOn) {
   std::string many = "GET /hello/x HTTP/1.1\r\n" + s.host();
   for (int i = 0; i < 100; ++i) many += "X-" + std::to_string(i) + ": 1\r\n";
   EXPECT_EQ(statusOf(s.ask(many + "\r\n")), 431);
-  EXPECT_EQ(statusOf(s.ask("POST /echo HTTP/1.1\r\n" + s.host() + "Transfer-Encoding: chunked\r\n\r\n0\r\n\r\n")), 411);
+  const std::string chunked =
+      "POST /echo HTTP/1.1\r\n" + s.host() + "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
+  answer = s.ask(chunked + "3\r\n[1,\r\n2\r\n2]\r\n0\r\n\r\n");
+  EXPECT_EQ(statusOf(answer), 200) << answer;
+  EXPECT_EQ(bodyOf(answer), "[1,2]");
+  EXPECT_EQ(statusOf(s.ask(chunked + "400\r\n")), 413);
   EXPECT_EQ(statusOf(s.get("/hello/x")), 200);
 }
 

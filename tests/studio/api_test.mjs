@@ -85,7 +85,7 @@ try {
   ok((await raw(url, 'GET', '/vendor/three/build/three.module.js')).status === 200, 'three.js is served');
   ok((await raw(url, 'GET', '/')).body.toString().includes('rockbake studio'), 'the page is served');
   const big = await rawPost(url, '/api/edit', 'x'.repeat(2 * 1024 * 1024));
-  ok(big.status === 413 && big.body.includes('over 1 MB'), `a 2 MB body gets 413 with a message (${big.status} ${big.body})`);
+  ok(big.status === 413 && big.body.includes('at most 1 MiB'), `a 2 MB body gets 413 with a message (${big.status} ${big.body})`);
   await still('a 2 MB body');
   const bad = await raw(url, 'POST', '/api/edit', '{"durability": {"points": [[0, 1], ', { 'Content-Type': 'application/json' });
   ok(bad.status === 400 && JSON.parse(bad.body.toString()).error.includes('not valid JSON'), 'malformed JSON gets 400 with a message');
