@@ -9,8 +9,6 @@
 #include <array>
 #include <cctype>
 
-#include "core/error.h"
-
 namespace rockbake::http {
 namespace {
 
@@ -86,14 +84,13 @@ std::optional<HttpError> CallerRules::refusal(const std::string& method, const s
                                               const std::optional<std::string>& origin,
                                               const std::optional<std::string>& content_type) const {
   if (!host || !knownHost(*host))
-    return HttpError(403, "Host '" + escapeControlBytes(host.value_or("")) +
-                              "' is not this server's address; open it at " + address_);
+    return HttpError(403, "Host '" + host.value_or("") + "' is not this server's address; open it at " + address_);
   if (origin && !(origin->rfind("http://", 0) == 0 && knownHost(origin->substr(7))))
-    return HttpError(403, "requests from other web pages (Origin '" + escapeControlBytes(*origin) +
-                              "') are refused; use the page at " + address_);
+    return HttpError(
+        403, "requests from other web pages (Origin '" + *origin + "') are refused; use the page at " + address_);
   if (method == "POST" && mediaType(content_type.value_or("")) != "application/json")
-    return HttpError(415, "a POST must have Content-Type: application/json (it had '" +
-                              escapeControlBytes(content_type.value_or("")) + "')");
+    return HttpError(415,
+                     "a POST must have Content-Type: application/json (it had '" + content_type.value_or("") + "')");
   return std::nullopt;
 }
 

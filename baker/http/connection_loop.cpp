@@ -80,6 +80,7 @@ struct Connection {
   Framing framing;           // header_bytes > 0 once the headers are whole
   std::size_t reserved = 0;  // body bytes counted against Limits::max_buffered_bytes
   std::string out;
+  std::string_view sending;  // `out`, or the answer made beforehand for running out of memory
   std::size_t sent = 0;
   bool drain = false;  // after the answer: Draining, not closed
   std::size_t drained = 0;
@@ -117,6 +118,8 @@ struct ConnectionLoop::Impl {
     out_of_memory = plainAnswer(503, "the server ran out of memory answering this request; try again");
     wake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
     if (wake < 0) throw std::runtime_error(std::string("cannot make an event descriptor: ") + std::strerror(errno));
+    // Every connection may be answered at once: handing an answer over never allocates.
+    answered.reserve(limits.max_connections + 1);
   }
   ~Impl() {
     for (auto& [fd, c] : connections) ::close(fd);
@@ -184,11 +187,15 @@ void ConnectionLoop::Impl::run() {
     } catch (const std::bad_alloc&) {
       // Out of memory in the loop itself: drop the unfinished requests (their
       // buffers are what can be given back) and carry on.
-      std::vector<int> reading;
-      for (const auto& [fd, c] : connections)
-        if (c->phase == Connection::Phase::Reading) reading.push_back(fd);
-      for (const int fd : reading) close(fd);
-      spdlog::warn("http: out of memory; dropped {} unfinished requests", reading.size());
+      for (auto it = connections.begin(); it != connections.end();) {
+        if (it->second->phase != Connection::Phase::Reading) {
+          ++it;
+          continue;
+        }
+        buffered -= it->second->reserved;
+        ::close(it->first);
+        it = connections.erase(it);
+      }
     }
   }
 }
@@ -368,8 +375,8 @@ void ConnectionLoop::Impl::enqueue(Connection& c) {
   {
     std::lock_guard lock(mutex);
     if (waiting.size() < limits.max_waiting_requests) {
-      c.phase = Connection::Phase::WithWorker;
       waiting.push_back(&c);
+      c.phase = Connection::Phase::WithWorker;
     }
   }
   if (c.phase != Connection::Phase::WithWorker) {
@@ -387,6 +394,7 @@ void ConnectionLoop::Impl::refuse(Connection& c, int status, const std::string& 
   c.reserved = 0;
   std::string().swap(c.in);
   c.out = plainAnswer(status, message);
+  c.sending = c.out;
   c.sent = 0;
   c.drain = drain;
   c.phase = Connection::Phase::Writing;
@@ -395,8 +403,8 @@ void ConnectionLoop::Impl::refuse(Connection& c, int status, const std::string& 
 }
 
 void ConnectionLoop::Impl::writeTo(Connection& c) {
-  while (c.sent < c.out.size()) {
-    const ssize_t n = ::send(c.fd, c.out.data() + c.sent, c.out.size() - c.sent, MSG_NOSIGNAL);
+  while (c.sent < c.sending.size()) {
+    const ssize_t n = ::send(c.fd, c.sending.data() + c.sent, c.sending.size() - c.sent, MSG_NOSIGNAL);
     if (n > 0) {
       c.sent += std::size_t(n);
       continue;
@@ -411,6 +419,7 @@ void ConnectionLoop::Impl::writeTo(Connection& c) {
     return;
   }
   ::shutdown(c.fd, SHUT_WR);
+  c.sending = {};
   std::string().swap(c.out);
   c.phase = Connection::Phase::Draining;
   c.deadline = Clock::now() + kDrainTime;
@@ -432,12 +441,14 @@ void ConnectionLoop::Impl::collectAnswers() {
   std::vector<Connection*> done;
   {
     std::lock_guard lock(mutex);
-    done.swap(answered);
+    done.assign(answered.begin(), answered.end());  // `answered` keeps its room
+    answered.clear();
   }
   for (Connection* c : done) {
     buffered -= c->reserved;
     c->reserved = 0;
     std::string().swap(c->in);
+    c->sending = c->out.empty() ? std::string_view(out_of_memory) : std::string_view(c->out);
     c->sent = 0;
     c->phase = Connection::Phase::Writing;
     c->deadline = Clock::now() + limits.answer_time;
@@ -479,7 +490,7 @@ void ConnectionLoop::Impl::work() {
       waiting.pop_front();
     }
     const RawRequest request{c->in, c->peer, c->peer_port, c->local, c->local_port};
-    std::string out;
+    std::string out;  // empty: the answerer ran out of memory even for its refusal
     try {
       out = answer(request);
     } catch (...) {
@@ -487,12 +498,8 @@ void ConnectionLoop::Impl::work() {
     }
     {
       std::lock_guard lock(mutex);
-      // Empty: the answerer ran out of memory even for its refusal.
-      if (out.empty())
-        c->out.assign(out_of_memory);
-      else
-        c->out = std::move(out);
-      answered.push_back(c);
+      c->out = std::move(out);
+      answered.push_back(c);  // within its reserved room
     }
     signal();
   }

@@ -22,12 +22,13 @@
 
 namespace rockbake::http {
 
-// One request as read whole, and who sent it.
+// One request as read whole, and who sent it: views of the connection's own
+// strings, valid while the answerer runs.
 struct RawRequest {
   std::string_view bytes;  // request line, headers and body
-  std::string peer_address;
+  std::string_view peer_address;
   int peer_port = 0;
-  std::string local_address;
+  std::string_view local_address;
   int local_port = 0;
 };
 

@@ -51,11 +51,11 @@ class BufferStream final : public httplib::Stream {
     return ssize_t(size);
   }
   void get_remote_ip_and_port(std::string& ip, int& port) const override {
-    ip = request_.peer_address;
+    ip.assign(request_.peer_address);
     port = request_.peer_port;
   }
   void get_local_ip_and_port(std::string& ip, int& port) const override {
-    ip = request_.local_address;
+    ip.assign(request_.local_address);
     port = request_.local_port;
   }
   // Never a descriptor: cpp-httplib would refuse one past FD_SETSIZE, which it

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
+
 namespace rockbake::http {
 
 struct Request {
@@ -37,9 +39,12 @@ struct Response {
 
 // A request the server refuses: a 4xx (or 503) status and a message saying
 // what is wrong and what to do, sent as {"error": message}. Handlers throw it.
+// Control bytes in the message (it may quote the request) are written as \xNN,
+// so what() holds all of it.
 class HttpError : public std::runtime_error {
  public:
-  HttpError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  HttpError(int status, const std::string& message)
+      : std::runtime_error(escapeControlBytes(message)), status_(status) {}
   int status() const { return status_; }
 
  private:

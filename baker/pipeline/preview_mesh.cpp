@@ -18,4 +18,8 @@ AssetMeshes previewMeshes(const VoxelRock& rock, const Preset& preset, const Sim
   return applyPalette(std::move(meshes), params);
 }
 
+std::uint64_t estimatePreviewBytes(const GridLayout& layout) {
+  return (std::uint64_t(64) << 20) + 48 * std::uint64_t(layout.cellCount());
+}
+
 }  // namespace rockbake

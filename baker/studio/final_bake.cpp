@@ -37,18 +37,22 @@ void FinalBake::bake(const Preset& preset, const ResolvedShape& shape) {
     status_.progress = fraction;
     status_.message = stage;
   };
-  std::string state = "done", message;
+  bool done = false;
+  std::string message;
   try {
     const BakeSummary summary = bakeAsset(preset, shape, options);
+    done = true;
     message = fmt::format("{} cycles in {:.1f} s → {}", summary.cycles, summary.seconds, summary.asset_dir.string());
   } catch (const std::exception& e) {
-    state = "failed";
-    message = e.what();
+    try {
+      message = e.what();
+    } catch (const std::bad_alloc&) {
+    }
   }
   std::lock_guard lock(mutex_);
-  status_.state = state;
-  status_.message = message;
-  if (state == "done") status_.progress = 1.0;
+  status_.state = done ? "done" : "failed";  // both fit in the string's own buffer
+  status_.message.swap(message);
+  if (done) status_.progress = 1.0;
 }
 
 }  // namespace rockbake

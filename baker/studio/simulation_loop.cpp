@@ -37,17 +37,21 @@ void SimulationLoop::run() {
       wake_.wait(lock, [&] { return stopping_ || playing_; });
       continue;
     }
-    if (session_.atEnd()) {
-      playing_ = false;
-      continue;
-    }
     const auto started = std::chrono::steady_clock::now();
     try {
+      if (session_.atEnd()) {
+        playing_ = false;
+        continue;
+      }
       session_.step();
     } catch (const std::exception& e) {
-      spdlog::error("studio: the simulation stopped: {}", e.what());
-      problem_ = e.what();
       playing_ = false;
+      try {
+        problem_ = e.what();
+        spdlog::error("studio: the simulation stopped: {}", e.what());
+      } catch (const std::bad_alloc&) {
+        problem_.clear();  // no memory even for the message: the page sees the pause
+      }
     }
     // Let a waiting request in between cycles; at a set rate, wait out the rest of the cycle's time.
     const double r = rate_;

@@ -124,6 +124,7 @@ http::Handler locked(Studio& studio, Endpoint endpoint) {
   return [&studio, endpoint](const Request& request) {
     try {
       std::lock_guard lock(studio.mutex);
+      studio.session.recover();
       return endpoint(studio, request);
     } catch (const StudioError& e) {
       throw HttpError(e.status(), e.what());
@@ -131,7 +132,7 @@ http::Handler locked(Studio& studio, Endpoint endpoint) {
       throw HttpError(400, e.what());
     } catch (const std::bad_alloc&) {
       throw HttpError(503, "out of memory answering " + request.method + " " + request.path +
-                               ": the studio is as it was; close other programs or restart it at a lower --resolution");
+                               "; the studio carries on: close other programs, or restart it at a lower --resolution");
     }
   };
 }

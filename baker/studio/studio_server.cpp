@@ -1,10 +1,12 @@
 #include "studio/studio_server.h"
 
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
 
+#include "core/memory.h"
 #include "studio/stop_signals.h"
 #include "studio/studio_routes.h"
 #include "studio/studio_session.h"
@@ -35,7 +37,10 @@ http::Limits studioLimits() {
 int runStudio(const StudioOptions& options) {
   requirePage(options.web_root);
   StopSignals signals;  // first: every thread from here on inherits the blocked mask
-  StudioSession session(options.preset, options.resolution);
+  // The checkpoints take at most an eighth of what this process may use, and 256 MiB.
+  CheckpointBounds checkpoints;
+  checkpoints.max_bytes = std::min<std::uint64_t>(checkpoints.max_bytes, memoryLimitBytes() / 8);
+  StudioSession session(options.preset, options.resolution, checkpoints);
   Studio studio(session, options.out_dir);
   http::LocalServer server(studioRoutes(studio, options.web_root), studioLimits());
   try {

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "export/vdb_file.h"
 #include "pipeline/manifest.h"
 #include "pipeline/preview_mesh.h"
@@ -143,9 +144,11 @@ void StudioSession::restart() {
   VoxelRock initial = buildInitialRock(shape_, preset_);
   initial_rock_ = initial.count(Material::Rock);
   end_cycle_ = plannedCycles(preset_, initial.layout.h);
-  sim_.reset();
-  sim_ = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
-  checkpoints_.restart(sim_->snapshot(), checkpointSpacing());
+  // Built before the old one goes: out of memory here, the session stays as it was.
+  auto fresh = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
+  SimulationSnapshot start = fresh->snapshot();
+  sim_ = std::move(fresh);
+  checkpoints_.restart(std::move(start), checkpointSpacing());
   history_.clear();
   ++rock_version_;
 }
@@ -155,30 +158,46 @@ int StudioSession::checkpointSpacing() const {
 }
 
 void StudioSession::restore(const SimulationSnapshot& checkpoint) {
-  SimulationSnapshot copy = checkpoint;
-  sim_.reset();  // first: with memory short, the old simulation's is what the new one needs
-  sim_ = std::make_unique<WeatheringSimulation>(std::move(copy), simParams());
-  history_.resize(std::size_t(sim_->cycle()));
+  // The old simulation goes first: with memory short, its memory is what the new
+  // one needs. Should building the new one fail, recover() tries again later.
+  sim_.reset();
+  lost_at_ = checkpoint.cycle;
   ++rock_version_;
+  sim_ = std::make_unique<WeatheringSimulation>(SimulationSnapshot(checkpoint), simParams());
+  lost_at_ = -1;
+  history_.resize(std::size_t(sim_->cycle()));
+}
+
+void StudioSession::recover() {
+  if (!sim_) restore(checkpoints_.atOrBefore(lost_at_));
+}
+
+const WeatheringSimulation& StudioSession::simulation() const {
+  if (!sim_)
+    throw StudioError(503,
+                      "the simulation is being rebuilt after running out of memory; close other programs and "
+                      "try again");
+  return *sim_;
 }
 
 int StudioSession::cycle() const {
-  return sim_->cycle();
+  return simulation().cycle();
 }
 double StudioSession::h() const {
-  return sim_->rock().layout.h;
+  return simulation().rock().layout.h;
 }
 double StudioSession::time() const {
-  return sim_->cycle() * h();
+  return cycle() * h();
 }
 bool StudioSession::finished() const {
-  return sim_->finished();
+  return simulation().finished();
 }
 bool StudioSession::atEnd() const {
   return cycle() >= end_cycle_ || finished();
 }
 
 CycleStats StudioSession::step() {
+  recover();
   if (finished()) return {};
   const int from = cycle();
   try {
@@ -188,8 +207,12 @@ CycleStats StudioSession::step() {
     if (checkpoints_.wants(stats.cycle)) checkpoints_.keep(sim_->snapshot());
     return stats;
   } catch (const std::bad_alloc&) {
-    // A cycle cut short may have left the simulation half-done: back to the latest checkpoint.
-    restore(checkpoints_.atOrBefore(from));
+    // A cycle cut short may have left the simulation half-done: back to the latest checkpoint
+    // (or, should that fail too, to be rebuilt by recover()).
+    try {
+      restore(checkpoints_.atOrBefore(from));
+    } catch (const std::bad_alloc&) {
+    }
     throw StudioError(503, fmt::format("out of memory running the cycle after time {:.4g}: the studio went back to "
                                        "time {:.4g} and carries on from there; close other programs or restart the "
                                        "studio at a lower --resolution",
@@ -198,6 +221,7 @@ CycleStats StudioSession::step() {
 }
 
 void StudioSession::reset() {
+  recover();
   restore(checkpoints_.atOrBefore(0));
   checkpoints_.restart(sim_->snapshot(), checkpointSpacing());
 }
@@ -213,6 +237,7 @@ int StudioSession::cycleAt(double t) const {
 }
 
 void StudioSession::seek(double t) {
+  recover();
   const int target = cycleAt(t);
   // The latest checkpoint at or before the target; restore it when it is ahead of
   // the simulation (a shortcut forward) or when the target lies behind it.
@@ -226,6 +251,7 @@ void StudioSession::runUntil(double t) {
 }
 
 void StudioSession::edit(const json& part) {
+  recover();
   if (!part.is_object() || part.empty())
     throw StudioError(400, "an edit is a JSON object with any of durability, bubbles and response");
   PresetOverrides overrides;
@@ -278,8 +304,13 @@ void StudioSession::edit(const json& part) {
       if (parts.response) k.response.reset();
     }
     std::erase_if(keyframes, [](const DurabilityKeyframe& k) { return !k.graph && !k.bubbles && !k.response; });
-    preset_ = std::move(candidate);
-    restart();
+    std::swap(preset_, candidate);
+    try {
+      restart();
+    } catch (...) {
+      std::swap(preset_, candidate);  // the edit did not happen
+      throw;
+    }
     return;
   }
   // Later: a keyframe at the current time (merged into one already there); the
@@ -329,8 +360,8 @@ json StudioSession::state() const {
   for (const auto& e : history_) history.push_back({e.time, e.rock});
   json checkpoints = json::array();
   for (const int c : checkpoints_.cycles()) checkpoints.push_back(c * h());
-  const GridLayout& g = sim_->rock().layout;
-  const SimulationCounts counts = sim_->counts();
+  const GridLayout& g = simulation().rock().layout;
+  const SimulationCounts counts = simulation().counts();
   return {{"cycle", cycle()},
           {"time", t},
           {"h", h()},
@@ -355,14 +386,24 @@ json StudioSession::state() const {
             {"response", active_json["response"]}}}};
 }
 
+void StudioSession::requireMemoryFor(const std::string& what) const {
+  const std::uint64_t needed = estimatePreviewBytes(simulation().rock().layout), free = memoryHeadroomBytes();
+  if (free < needed)
+    throw StudioError(503, fmt::format("not enough memory for {}: it needs about {} MiB and this process can take {} "
+                                       "MiB more; close other programs, or restart the studio at a lower --resolution",
+                                       what, needed >> 20, free >> 20));
+}
+
 std::string StudioSession::rockVdb() const {
+  requireMemoryFor("rock.vdb");
   std::ostringstream out;
-  writeRockVdb(sim_->rock(), out);
+  writeRockVdb(simulation().rock(), out);
   return std::move(out).str();
 }
 
 std::string StudioSession::previewMesh(Palette palette) const {
-  const AssetMeshes meshes = previewMeshes(sim_->rock(), preset_, sim_->activeParams(), palette);
+  requireMemoryFor("the preview mesh");
+  const AssetMeshes meshes = previewMeshes(simulation().rock(), preset_, simulation().activeParams(), palette);
   std::string out = "RBPM";
   appendU32(out, 1);
   appendU32(out, std::uint32_t(cycle()));
@@ -403,8 +444,8 @@ SaveResult StudioSession::save(const std::string& name, bool overwrite) {
   // Not starting with '-': `rockbake lint *.yaml` would read a file named -x.yaml as an option.
   static const std::regex kName("[a-z0-9_][a-z0-9_-]{0,63}");
   if (!std::regex_match(name, kName))
-    throw StudioError(400, "name: '" + escapeControlBytes(name) +
-                               "' is not a save name: use 1 to 64 of a-z, 0-9, _ and -, not starting with -");
+    throw StudioError(400,
+                      "name: '" + name + "' is not a save name: use 1 to 64 of a-z, 0-9, _ and -, not starting with -");
   if (cycle() == 0)
     throw StudioError(409, "run at least one cycle before saving: a saved preset bakes at least one cycle");
   const fs::path folder = file_.parent_path();

@@ -24,6 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "inputs/resolve_shape.h"
 #include "preset/preset.h"
 #include "sim/weathering.h"
@@ -35,7 +36,9 @@ namespace rockbake {
 // and a message that says what to do.
 class StudioError : public std::runtime_error {
  public:
-  StudioError(int status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  // Control bytes in `message` (it may quote the request) are written as \xNN, so what() holds all of it.
+  StudioError(int status, const std::string& message)
+      : std::runtime_error(escapeControlBytes(message)), status_(status) {}
   int status() const { return status_; }
 
  private:
@@ -65,6 +68,10 @@ class StudioSession {
   void reset();                // back to time 0, keeping the edits; only time 0's checkpoint stays
   void runUntil(double time);  // forward, or seek back first; rounds up to a whole cycle
   void seek(double time);      // restore the nearest checkpoint at or before, re-simulate to it
+  // Out of memory while the simulation was being restored from a checkpoint,
+  // the session has none until this rebuilds it (each request starts with it;
+  // step, reset and seek call it too). Meanwhile the rest throw StudioError 503.
+  void recover();
 
   // A partial preset: any of durability {points, noise}, bubbles, response.
   // Validated like a preset (StudioError 400 with the reader's message).
@@ -76,8 +83,11 @@ class StudioSession {
   const ResolvedShape& shape() const { return shape_; }
 
   nlohmann::json state() const;
-  std::string rockVdb() const;  // rock.vdb bytes, as `bake --no-mesh` writes them
-  // The preview mesh (pipeline/preview_mesh.h) in docs/studio.md's binary format.
+  // rock.vdb bytes, as `bake --no-mesh` writes them, and the preview mesh
+  // (pipeline/preview_mesh.h) in docs/studio.md's binary format. Both run OpenVDB,
+  // which cannot recover from running out of memory part-way: StudioError 503
+  // first when this process has less memory left than they may need.
+  std::string rockVdb() const;
   std::string previewMesh(Palette palette) const;
 
   int cycle() const;
@@ -90,6 +100,8 @@ class StudioSession {
  private:
   void restart();  // a new simulation from the initial rock, checkpoints and history cleared
   void restore(const SimulationSnapshot& checkpoint);
+  const WeatheringSimulation& simulation() const;        // StudioError 503 while it is lost (recover())
+  void requireMemoryFor(const std::string& what) const;  // StudioError 503 below estimatePreviewBytes
   int checkpointSpacing() const;  // the timeline's first spacing: about kCheckpointsPerRun over the preset's time
   SimParams simParams() const;
   int cycleAt(double time) const;  // the whole cycle a time rounds up to
@@ -101,7 +113,8 @@ class StudioSession {
   int own_resolution_;
   Preset preset_;  // at the studio's resolution, with every edit
   ResolvedShape shape_;
-  std::unique_ptr<WeatheringSimulation> sim_;
+  std::unique_ptr<WeatheringSimulation> sim_;  // empty only while lost: see recover()
+  int lost_at_ = -1;                           // then, the cycle it was being restored to
   CheckpointTimeline checkpoints_;
   struct HistoryEntry {
     double time;
