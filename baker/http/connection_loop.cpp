@@ -131,7 +131,9 @@ struct ConnectionLoop::Impl {
   void serveOnce();
   void acceptAll();
   void admit(int fd, const sockaddr_storage& peer);
-  bool makeRoom(const std::string& peer);
+  bool makeRoom();
+  void dropSlow(Connection& c);
+  void limitSlowPerClient(Clock::time_point now);
   void readFrom(Connection& c);
   bool advance(Connection& c);
   void writeTo(Connection& c);
@@ -211,6 +213,8 @@ void ConnectionLoop::Impl::serveOnce() {
     if (c->phase == Connection::Phase::WithWorker) continue;
     polled.push_back({fd, short(c->phase == Connection::Phase::Writing ? POLLOUT : POLLIN), 0});
     next = std::min(next, c->deadline);
+    if (c->phase == Connection::Phase::Reading && c->opened + limits.slow_after > now)
+      next = std::min(next, c->opened + limits.slow_after);  // when it turns slow (limitSlowPerClient)
   }
   const int timeout =
       next == Clock::time_point::max()
@@ -264,41 +268,50 @@ void ConnectionLoop::Impl::acceptAll() {
   }
 }
 
-// Room for one more connection from `peer`: drops the oldest connection still
-// sending its request, of that client when it is at its limit, else of all
-// when the server is. False when there is none to drop.
-bool ConnectionLoop::Impl::makeRoom(const std::string& peer) {
-  const auto oldestReading = [&](bool same_client) {
-    Connection* oldest = nullptr;
-    for (const auto& [fd, c] : connections)
-      if (c->phase == Connection::Phase::Reading && (!same_client || c->peer == peer) &&
-          (!oldest || c->opened < oldest->opened))
-        oldest = c.get();
-    return oldest;
-  };
-  const std::size_t from_peer = std::size_t(
-      std::count_if(connections.begin(), connections.end(), [&](const auto& e) { return e.second->peer == peer; }));
-  Connection* dropped = nullptr;
-  if (from_peer >= limits.max_connections_per_client) {
-    if (!(dropped = oldestReading(true))) return false;
-  } else if (connections.size() >= limits.max_connections) {
-    if (!(dropped = oldestReading(false))) return false;
-  } else {
-    return true;
-  }
-  const std::string answer_bytes =
-      plainAnswer(408, "the request did not arrive in time: its client opened more connections than the server keeps");
-  [[maybe_unused]] const ssize_t n = ::send(dropped->fd, answer_bytes.data(), answer_bytes.size(), MSG_NOSIGNAL);
-  close(dropped->fd);
+// Room for one more connection: past max_connections, the oldest request
+// still arriving after slow_after (of any client) makes way for it. False
+// when there is none.
+bool ConnectionLoop::Impl::makeRoom() {
+  if (connections.size() < limits.max_connections) return true;
+  const Clock::time_point slow = Clock::now() - limits.slow_after;
+  Connection* oldest = nullptr;
+  for (const auto& [fd, c] : connections)
+    if (c->phase == Connection::Phase::Reading && c->opened <= slow && (!oldest || c->opened < oldest->opened))
+      oldest = c.get();
+  if (!oldest) return false;
+  dropSlow(*oldest);
   return true;
+}
+
+// A request still arriving that makes way for others: 408, and closed at once.
+void ConnectionLoop::Impl::dropSlow(Connection& c) {
+  const std::string answer_bytes = plainAnswer(
+      408, "the request did not arrive in time: its client keeps more slow requests than the server allows");
+  [[maybe_unused]] const ssize_t n = ::send(c.fd, answer_bytes.data(), answer_bytes.size(), MSG_NOSIGNAL);
+  close(c.fd);
+}
+
+// Each client keeps at most max_connections_per_client requests that have been
+// arriving for longer than slow_after: its oldest beyond that are dropped.
+void ConnectionLoop::Impl::limitSlowPerClient(Clock::time_point now) {
+  std::map<std::string_view, std::vector<Connection*>> slow_by_client;
+  for (const auto& [fd, c] : connections)
+    if (c->phase == Connection::Phase::Reading && c->opened <= now - limits.slow_after)
+      slow_by_client[c->peer].push_back(c.get());
+  std::vector<Connection*> dropped;
+  for (auto& [peer, slow] : slow_by_client) {
+    if (slow.size() <= limits.max_connections_per_client) continue;
+    std::sort(slow.begin(), slow.end(), [](const Connection* a, const Connection* b) { return a->opened < b->opened; });
+    dropped.insert(dropped.end(), slow.begin(), slow.end() - std::ptrdiff_t(limits.max_connections_per_client));
+  }
+  for (Connection* c : dropped) dropSlow(*c);  // after the map: its keys view the connections' strings
 }
 
 void ConnectionLoop::Impl::admit(int fd, const sockaddr_storage& peer_address) {
   const auto [peer, peer_port] = addressOf(peer_address);
-  if (stopping || !makeRoom(peer)) {
+  if (stopping || !makeRoom()) {
     const std::string refusal = plainAnswer(
-        503, fmt::format("the server is busy: {} has {} requests under way; try again when they are answered", peer,
-                         limits.max_connections_per_client));
+        503, fmt::format("the server is busy: it has {} connections open; try again in a moment", connections.size()));
     [[maybe_unused]] const ssize_t n = ::send(fd, refusal.data(), refusal.size(), MSG_NOSIGNAL);
     ::close(fd);
     return;
@@ -457,6 +470,7 @@ void ConnectionLoop::Impl::collectAnswers() {
 }
 
 void ConnectionLoop::Impl::expire(Clock::time_point now) {
+  limitSlowPerClient(now);
   std::vector<Connection*> late;
   for (const auto& [fd, c] : connections)
     if (c->phase != Connection::Phase::WithWorker && c->deadline <= now) late.push_back(c.get());

@@ -7,9 +7,12 @@
 //   - Refusals before a worker (431, 413, 411, 400, 408, 503) are written by
 //     this thread; after a refused body the connection is drained for a moment
 //     so the client reads the answer instead of a reset.
-//   - Past max_connections_per_client (or max_connections), a new connection
-//     drops the oldest connection of that client (or of all) still sending its
-//     request; when none is, the new one is refused with 503.
+//   - A request still arriving after Limits::slow_after is slow. A client
+//     address keeps at most max_connections_per_client slow requests: its
+//     oldest beyond that are dropped (408) as soon as they turn slow, so a
+//     burst of requests that arrive whole at once is never cut short. At
+//     max_connections, a new connection takes the place of the oldest slow
+//     request of any client (408); when there is none, it is refused (503).
 //   - One request per connection: the answer is the last thing sent.
 #pragma once
 

@@ -170,17 +170,64 @@ TEST(LocalServer, ARequestMustArriveWholeInTime) {
 
 // One client's unfinished requests make way for its new ones: past the limit the
 // oldest unfinished one is dropped with a 408, and the new request is answered.
-TEST(LocalServer, ConnectionsPerClientAreBounded) {
+TEST(LocalServer, SlowRequestsPerClientAreBounded) {
   Limits limits;
   limits.max_connections_per_client = 4;
+  limits.slow_after = std::chrono::milliseconds(0);  // every unfinished request is slow at once
   Served s(echoRoutes(), limits);
   std::vector<std::unique_ptr<SocketClient>> idle;
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < 5; ++i) {
     idle.push_back(std::make_unique<SocketClient>(s.port()));
     idle.back()->send("GET /hel");
   }
+  EXPECT_EQ(statusOf(idle.front()->readAll()), 408) << "the oldest slow request past 4 was dropped";
   EXPECT_EQ(statusOf(s.get("/hello/x")), 200);
-  EXPECT_EQ(statusOf(idle.front()->readAll()), 408) << "the oldest unfinished request was dropped";
+  EXPECT_TRUE(idle.back()->send("lo/y HTTP/1.1\r\n" + s.host() + "\r\n"));
+  EXPECT_EQ(statusOf(idle.back()->readAll()), 200) << "the newer slow requests were kept";
+}
+
+TEST(LocalServer, RequestsPastTheLimitAreKeptWhileTheyAreRecent) {
+  Limits limits;
+  limits.max_connections_per_client = 4;
+  limits.slow_after = std::chrono::minutes(1);  // none turns slow in this test
+  Served s(echoRoutes(), limits);
+  std::vector<std::unique_ptr<SocketClient>> unfinished;
+  for (int i = 0; i < 8; ++i) {
+    unfinished.push_back(std::make_unique<SocketClient>(s.port()));
+    unfinished.back()->send("GET /hel");
+  }
+  for (auto& client : unfinished) {
+    EXPECT_TRUE(client->send("lo/y HTTP/1.1\r\n" + s.host() + "\r\n"));
+    EXPECT_EQ(statusOf(client->readAll()), 200);
+  }
+}
+
+TEST(LocalServer, AtTheConnectionLimitOnlySlowRequestsMakeWay) {
+  Limits limits;
+  limits.max_connections = 4;
+  limits.slow_after = std::chrono::minutes(1);
+  Served s(echoRoutes(), limits);
+  std::vector<std::unique_ptr<SocketClient>> unfinished;
+  for (int i = 0; i < 4; ++i) {
+    unfinished.push_back(std::make_unique<SocketClient>(s.port()));
+    unfinished.back()->send("GET /hel");
+  }
+  EXPECT_EQ(statusOf(s.get("/hello/x")), 503) << "none is slow yet: the new one waits its turn";
+  EXPECT_TRUE(unfinished.front()->send("lo/y HTTP/1.1\r\n" + s.host() + "\r\n"));
+  EXPECT_EQ(statusOf(unfinished.front()->readAll()), 200);
+}
+
+TEST(LocalServer, ABurstOfWholeRequestsPastTheLimitIsAnswered) {
+  Limits limits;
+  limits.max_connections_per_client = 4;
+  limits.slow_after = std::chrono::minutes(1);
+  Served s(echoRoutes(), limits);
+  std::vector<std::unique_ptr<SocketClient>> burst;
+  for (int i = 0; i < 24; ++i) {  // each sent whole before the next connects: none is slow, none waits
+    burst.push_back(std::make_unique<SocketClient>(s.port()));
+    burst.back()->send("GET /hello/x HTTP/1.1\r\n" + s.host() + "\r\n");
+  }
+  for (auto& client : burst) EXPECT_EQ(statusOf(client->readAll()), 200);
 }
 
 }  // namespace
