@@ -20,6 +20,7 @@
 #include "preset/preset_json.h"
 #include "preset/yaml_text.h"
 #include "sim/grid_layout.h"
+#include "sim/response.h"
 #include "sim/shapes.h"
 
 namespace rockbake {
@@ -32,6 +33,8 @@ using nlohmann::json;
 constexpr int kMaxExtraCycles = 10000;
 // In-memory checkpoints on the timeline: about this many over the preset's time.
 constexpr int kCheckpointsPerRun = 16;
+// Samples of the response function f in the state (x = 0, 1/64, ..., 1).
+constexpr int kResponseSamples = 64;
 
 // The preset's text, read as `lint` and `bake` read a preset (preset/yaml_text.h):
 // a FIFO, a device or a file over 1 MiB is refused before it is read.
@@ -356,6 +359,10 @@ json StudioSession::state() const {
   active_preset.bubbles = bubbles;
   active_preset.response = response;
   const json active_json = presetToJson(active_preset);
+  // f sampled for the page's response graph: the page draws it, never evaluates it.
+  json response_curve = json::array();
+  for (int i = 0; i <= kResponseSamples; ++i)
+    response_curve.push_back({double(i) / kResponseSamples, applyResponse(response, double(i) / kResponseSamples)});
   json history = json::array();
   for (const auto& e : history_) history.push_back({e.time, e.rock});
   json checkpoints = json::array();
@@ -383,7 +390,8 @@ json StudioSession::state() const {
           {"active",
            {{"durability", graphJson(preset_, graph)},
             {"bubbles", active_json["bubbles"]},
-            {"response", active_json["response"]}}}};
+            {"response", active_json["response"]}}},
+          {"response_curve", response_curve}};
 }
 
 void StudioSession::requireMemoryFor(const std::string& what) const {
