@@ -30,13 +30,13 @@ json stateJson(const Studio& studio) {
   return state;
 }
 
-Response getState(Studio& studio, const Request&) {
+Response getState(Studio& studio, const Request&, const json&) {
   return http::jsonResponse(stateJson(studio));
 }
 
 // {"action": "play" (with "rate"), "pause", "step" or "reset"}, {"run_until": t} or {"seek": t}.
-Response postControl(Studio& studio, const Request& request) {
-  json body = http::parseJsonBody(request);
+Response postControl(Studio& studio, const Request&, const json& request_body) {
+  json body = request_body;
   if (body.is_string()) body = {{"action", body}};
   const std::string shape = R"({"action": "play"|"pause"|"step"|"reset"}, {"run_until": t} or {"seek": t})";
   if (!body.is_object() || body.empty() || (body.size() > 1 && !(body.size() == 2 && body.contains("rate"))))
@@ -72,13 +72,12 @@ Response postControl(Studio& studio, const Request& request) {
   return http::jsonResponse(stateJson(studio));
 }
 
-Response postEdit(Studio& studio, const Request& request) {
-  studio.session.edit(http::parseJsonBody(request));
+Response postEdit(Studio& studio, const Request&, const json& body) {
+  studio.session.edit(body);
   return http::jsonResponse(stateJson(studio));
 }
 
-Response postSave(Studio& studio, const Request& request) {
-  const json body = http::parseJsonBody(request);
+Response postSave(Studio& studio, const Request&, const json& body) {
   const std::string shape = R"({"name": "asset-name", "overwrite": false})";
   const std::string name = http::stringMember(body, "name", shape);
   const SaveResult saved = studio.session.save(name, http::boolMember(body, "overwrite", false));
@@ -86,7 +85,7 @@ Response postSave(Studio& studio, const Request& request) {
   return http::jsonResponse({{"path", saved.path.string()}, {"time", saved.time}, {"preset_hash", saved.preset_hash}});
 }
 
-Response getRockVdb(Studio& studio, const Request&) {
+Response getRockVdb(Studio& studio, const Request&, const json&) {
   return {200, "application/octet-stream", studio.session.rockVdb(), {}};
 }
 
@@ -98,7 +97,7 @@ Palette paletteNamed(const std::string& name) {
   throw HttpError(400, "palette: expected natural, debug or curvature");
 }
 
-Response getMesh(Studio& studio, const Request& request) {
+Response getMesh(Studio& studio, const Request& request, const json&) {
   const Palette palette = paletteNamed(request.param("palette").value_or("natural"));
   auto& [version, bytes] = studio.meshes[palette];
   if (!bytes || version != studio.session.rockVersion()) {
@@ -109,23 +108,28 @@ Response getMesh(Studio& studio, const Request& request) {
   return {200, "application/octet-stream", *bytes, {{"X-Mesh-Version", std::to_string(version)}}};
 }
 
-Response postBake(Studio& studio, const Request& request) {
-  if (!request.body.empty()) http::parseJsonBody(request);
+Response postBake(Studio& studio, const Request&, const json&) {
   Preset preset = studio.session.finalPreset();
   ResolvedShape shape = readInputs(preset);
   const fs::path asset_dir = studio.bake.start(std::move(preset), std::move(shape));
   return http::jsonResponse({{"asset_dir", asset_dir.string()}}, 202);
 }
 
-using Endpoint = Response (*)(Studio&, const Request&);
+// An endpoint with its request's JSON body (null when it takes none).
+using Endpoint = Response (*)(Studio&, const Request&, const json& body);
+enum class Body { None, Required, Optional };  // Optional: an empty body is {}
 
 // Runs `endpoint` under the studio's lock; the session's refusals become the HTTP layer's.
-http::Handler locked(Studio& studio, Endpoint endpoint) {
-  return [&studio, endpoint](const Request& request) {
+http::Handler locked(Studio& studio, Endpoint endpoint, Body takes = Body::None) {
+  return [&studio, endpoint, takes](const Request& request) {
     try {
+      // Parsed before the lock: a large body costs its own worker's time, not every request's wait.
+      const json body = takes == Body::None                               ? json()
+                        : takes == Body::Optional && request.body.empty() ? json::object()
+                                                                          : http::parseJsonBody(request);
       std::lock_guard lock(studio.mutex);
       studio.session.recover();
-      return endpoint(studio, request);
+      return endpoint(studio, request, body);
     } catch (const StudioError& e) {
       throw HttpError(e.status(), e.what());
     } catch (const InputError& e) {
@@ -142,12 +146,12 @@ http::Handler locked(Studio& studio, Endpoint endpoint) {
 std::vector<http::Route> studioRoutes(Studio& studio, const fs::path& web_root) {
   return {
       {"GET", "/api/state", locked(studio, getState)},
-      {"POST", "/api/control", locked(studio, postControl)},
-      {"POST", "/api/edit", locked(studio, postEdit)},
-      {"POST", "/api/save", locked(studio, postSave)},
+      {"POST", "/api/control", locked(studio, postControl, Body::Required)},
+      {"POST", "/api/edit", locked(studio, postEdit, Body::Required)},
+      {"POST", "/api/save", locked(studio, postSave, Body::Required)},
       {"GET", "/api/rock\\.vdb", locked(studio, getRockVdb)},
       {"GET", "/api/mesh", locked(studio, getMesh)},
-      {"POST", "/api/bake", locked(studio, postBake)},
+      {"POST", "/api/bake", locked(studio, postBake, Body::Optional)},
       // The page and its pinned JavaScript; nothing else.
       {"GET", "/",
        [web_root](const Request&) {
