@@ -87,12 +87,13 @@ try {
   ok(r.status === 200, 'localhost with the port is the studio too');
 
   // ---- one request must not kill it
-  let deep = '';
-  for (let i = 0; i < 100000; ++i) deep += i % 2 ? '[' : '{"a":';
-  r = await raw(url, 'POST', '/api/edit', deep, json);
-  ok(r.status === 400 && r.body.toString() === '{"error":"the request body nests deeper than 64 levels"}',
-    `a 200 KB body nested 100 000 levels deep gets 400 without its text (${r.status} ${r.body.toString().slice(0, 80)})`);
-  ok((await api(url, '/api/state')).status === 200, 'still serving after the nested body');
+  // A bare array, and a bubble graph (the previous build's edit recursed into it: SIGSEGV).
+  for (const deep of ['['.repeat(100000) + ']'.repeat(100000), `{"bubbles": ${'['.repeat(100000)}${']'.repeat(100000)}}`]) {
+    r = await raw(url, 'POST', '/api/edit', deep, json);
+    ok(r.status === 400 && r.body.toString() === '{"error":"the request body nests deeper than 64 levels"}',
+      `a well-formed ${(deep.length / 1024).toFixed(0)} KiB body nested 100 000 levels deep gets 400 without its text (${r.status} ${r.body.toString().slice(0, 80)})`);
+    ok((await api(url, '/api/state')).status === 200, 'still serving after the nested body');
+  }
 
   // ---- client errors are 4xx with a message, never 500 or raw library text
   const refusals = [
