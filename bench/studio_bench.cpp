@@ -11,7 +11,7 @@
 
 namespace {
 
-using rockbake::PreviewPalette;
+using rockbake::Palette;
 using rockbake::StudioSession;
 
 const std::string kGoblin = std::string(ROCKBAKE_SOURCE_DIR) + "/presets/goblin.yaml";
@@ -22,7 +22,7 @@ void BM_StudioCycleAndPreviewMesh(benchmark::State& state) {
   std::size_t bytes = 0;
   for (auto _ : state) {
     studio.step();
-    bytes = studio.previewMesh(PreviewPalette::Natural).size();
+    bytes = studio.previewMesh(Palette::Natural).size();
   }
   state.counters["mesh_MB"] = double(bytes) / 1e6;
   state.counters["end_cycle"] = studio.cycle();
@@ -38,7 +38,7 @@ void BM_StudioPreviewMesh(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(1)));
   StudioSession studio(kGoblin, int(state.range(0)));
   studio.runUntil(0.75);  // half the preset's time: a weathered rock with colluvium
-  for (auto _ : state) benchmark::DoNotOptimize(studio.previewMesh(PreviewPalette::Natural));
+  for (auto _ : state) benchmark::DoNotOptimize(studio.previewMesh(Palette::Natural));
 }
 
 }  // namespace

@@ -212,7 +212,10 @@ typename GridT::Ptr readLayoutGrid(openvdb::io::File& vdb, const std::string& na
 
 }  // namespace
 
-void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf* rock_sdf) {
+namespace {
+
+// The archive of writeRockVdb to `out`; `file` names it in messages.
+void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf, const fs::path& file) {
   initializeOpenVdb();
   checkArrays(rock, file);
   const GridLayout& layout = rock.layout;
@@ -267,22 +270,31 @@ void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf
 #endif
 
     const openvdb::GridPtrVec grids{rockGrid, colluviumGrid, durabilityGrid, sdfGrid};
-    writeFileAtomically(file, [&](std::ostream& out) {
-      std::ostream archive_out(nullptr);
-      openvdb::io::Stream archive(archive_out);
-      ContentHashingBuffer hashing(out, archive, file);
-      archive_out.rdbuf(&hashing);
-      archive.write(grids, metadata);
-      if (!archive_out || !out) fail(file, "write", "serializing the grids failed");
-      const auto [at, uuid] = hashing.finish();
-      out.seekp(std::streamoff(at));
-      out.write(uuid.data(), std::streamsize(uuid.size()));
-      out.seekp(0, std::ios::end);
-      if (!out) fail(file, "write", "patching the archive's UUID failed");
-    });
+    const std::streampos start = out.tellp();
+    std::ostream archive_out(nullptr);
+    openvdb::io::Stream archive(archive_out);
+    ContentHashingBuffer hashing(out, archive, file);
+    archive_out.rdbuf(&hashing);
+    archive.write(grids, metadata);
+    if (!archive_out || !out) fail(file, "write", "serializing the grids failed");
+    const auto [at, uuid] = hashing.finish();
+    out.seekp(start + std::streamoff(at));
+    out.write(uuid.data(), std::streamsize(uuid.size()));
+    out.seekp(0, std::ios::end);
+    if (!out) fail(file, "write", "patching the archive's UUID failed");
   } catch (const openvdb::Exception& e) {
     fail(file, "write", e.what());
   }
+}
+
+}  // namespace
+
+void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf* rock_sdf) {
+  writeFileAtomically(file, [&](std::ostream& out) { writeVdbArchive(rock, out, rock_sdf, file); });
+}
+
+void writeRockVdb(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf) {
+  writeVdbArchive(rock, out, rock_sdf, "rock.vdb");
 }
 
 VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <iosfwd>
 
 #include "core/voxel_rock.h"
 
@@ -26,6 +27,12 @@ struct SmoothedSdf;  // core/openvdb_support.h
 // so the same rock gives the same file at any thread count.
 // Throws std::runtime_error on failure.
 void writeRockVdb(const VoxelRock& rock, const std::filesystem::path& file, const SmoothedSdf* rock_sdf = nullptr);
+
+// The same bytes to a stream that can seek back (a std::ostringstream, a file):
+// the archive's UUID is patched in after the grids are written. The studio
+// serves rock.vdb this way, without a file (docs/studio.md). Throws
+// std::runtime_error naming the stream as "rock.vdb".
+void writeRockVdb(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf = nullptr);
 
 // Reads a file written by writeRockVdb back into `layout`: material from the
 // "rock" and "colluvium" grids (Air elsewhere), durability from "durability",

@@ -1,14 +1,11 @@
 #include "pipeline/read_inputs.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <algorithm>
 #include <cstdint>
 
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/memory.h"
 #include "sim/grid_layout.h"
 
 namespace rockbake {
@@ -27,11 +24,7 @@ void checkGridCellCount(const Preset& preset) {
 void checkGridFitsInMemory(const Preset& preset) {
   const GridLayout layout = computeGridLayout(preset);
   const std::uint64_t needed = estimateSimulationBytes(preset);
-  std::uint64_t physical = std::uint64_t(::sysconf(_SC_PHYS_PAGES)) * std::uint64_t(::sysconf(_SC_PAGESIZE));
-  // A limit on this process (ulimit -v, a batch system's) counts as the machine's memory.
-  struct rlimit limit {};
-  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    physical = std::min<std::uint64_t>(physical, limit.rlim_cur);
+  const std::uint64_t physical = memoryLimitBytes();  // a limit on this process (ulimit -v) counts as the machine's
   if (needed > physical / 10 * 6)
     throw InputError(preset.locate("grid.resolution"), "grid.resolution",
                      fmt::format("a {}×{}×{} grid needs about {} MiB; this machine (or process) has {} MiB", layout.nx,

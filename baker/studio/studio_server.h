@@ -1,11 +1,14 @@
-// `rockbake studio` (docs/studio.md): a local HTTP server (cpp-httplib) around a
-// StudioSession, serving the page in studio/ and the JSON API of
-// docs/studio.md. One thread runs cycles while the page says play; requests
-// take the same lock, so each sees the simulation between two cycles.
+// `rockbake studio` (docs/studio.md): a StudioSession served on the local HTTP
+// layer (http/local_server.h, with its limits and who-may-call rules) by the
+// route table of studio/studio_routes.h, with a play loop
+// (studio/simulation_loop.h), a final bake (studio/final_bake.h) and Ctrl-C
+// (studio/stop_signals.h) beside it.
 #pragma once
 
 #include <filesystem>
 #include <string>
+
+#include "http/local_server.h"
 
 namespace rockbake {
 
@@ -18,10 +21,14 @@ struct StudioOptions {
   std::filesystem::path web_root;         // the page: studio/ in rockbake's data folder (core/data_dir.h)
 };
 
+// The HTTP layer's limits as the studio sets them (docs/studio.md, "The server's promises").
+http::Limits studioLimits();
+
 // Serves until SIGINT or SIGTERM, then stops cleanly (a final bake under way
 // is cancelled) and returns 0. Prints `studio: http://HOST:PORT/` on stdout
-// once it listens. Throws InputError for a bad preset, std::runtime_error when
-// the address cannot be bound or the page's files are missing.
+// once it listens. Throws InputError for a bad preset (a FIFO or a device
+// included), std::runtime_error when the address cannot be bound or the page's
+// files are missing.
 int runStudio(const StudioOptions& options);
 
 }  // namespace rockbake

@@ -1,11 +1,8 @@
 #include "studio/studio_session.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -14,10 +11,10 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "export/vdb_file.h"
-#include "mesh/bake_attributes.h"
-#include "mesh/extract_surfaces.h"
 #include "pipeline/manifest.h"
+#include "pipeline/preview_mesh.h"
 #include "pipeline/read_inputs.h"
 #include "preset/keyframe_edit.h"
 #include "preset/load_preset.h"
@@ -25,6 +22,7 @@
 #include "preset/schema.h"
 #include "preset/yaml_text.h"
 #include "sim/grid_layout.h"
+#include "sim/response.h"
 #include "sim/shapes.h"
 
 namespace rockbake {
@@ -37,13 +35,15 @@ using nlohmann::json;
 constexpr int kMaxExtraCycles = 10000;
 // In-memory checkpoints on the timeline: about this many over the preset's time.
 constexpr int kCheckpointsPerRun = 16;
+// Samples of the response function f in the state (x = 0, 1/64, ..., 1).
+constexpr int kResponseSamples = 64;
 
-std::string readText(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError({file.string()}, "", "cannot be read", "check the path and its permissions");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// The preset's text, read as `lint` and `bake` read a preset (preset/yaml_text.h):
+// a FIFO, a device or a file over 1 MiB is refused before it is read.
+std::string readPresetText(const fs::path& file) {
+  std::optional<std::string> text = readYamlFile(file.string(), "a preset");
+  if (!text) throw InputError({file.string()}, "", "cannot read the preset file", "check the path");
+  return std::move(*text);
 }
 
 // A JSON value as a YAML node. Numbers are written in their shortest exact
@@ -113,9 +113,12 @@ void appendMesh(std::string& out, const SurfaceMesh& m) {
 
 }  // namespace
 
-StudioSession::StudioSession(const fs::path& preset_file, int resolution)
-    : file_(preset_file), original_text_(readText(preset_file)), resolution_(resolution) {
-  own_resolution_ = loadPreset(file_).grid.resolution;
+StudioSession::StudioSession(const fs::path& preset_file, int resolution, CheckpointBounds checkpoint_bounds)
+    : file_(preset_file),
+      original_text_(readPresetText(preset_file)),
+      resolution_(resolution),
+      checkpoints_(checkpoint_bounds) {
+  own_resolution_ = parsePreset(original_text_, file_).grid.resolution;
   preset_ = parsePreset(original_text_, file_, {{}, std::nullopt, resolution_});
   shape_ = readInputs(preset_);
   restart();
@@ -135,51 +138,86 @@ void StudioSession::restart() {
   VoxelRock initial = buildInitialRock(shape_, preset_);
   initial_rock_ = initial.count(Material::Rock);
   end_cycle_ = plannedCycles(preset_, initial.layout.h);
-  sim_ = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
-  checkpoints_.clear();
+  // Built before the old one goes: out of memory here, the session stays as it was.
+  auto fresh = std::make_unique<WeatheringSimulation>(std::move(initial), simParams());
+  SimulationSnapshot start = fresh->snapshot();
+  sim_ = std::move(fresh);
+  checkpoints_.restart(std::move(start), checkpointSpacing());
   history_.clear();
-  keepCheckpoint();
   ++rock_version_;
 }
 
-void StudioSession::keepCheckpoint() {
-  checkpoints_.insert_or_assign(sim_->cycle(), sim_->snapshot());
+int StudioSession::checkpointSpacing() const {
+  return std::max(1, end_cycle_ / kCheckpointsPerRun);
 }
 
-void StudioSession::restore(int cycle) {
-  sim_ = std::make_unique<WeatheringSimulation>(checkpoints_.at(cycle), simParams());
-  history_.resize(std::size_t(cycle));
+void StudioSession::restore(const SimulationSnapshot& checkpoint) {
+  // The old simulation goes first: with memory short, its memory is what the new
+  // one needs. Should building the new one fail, recover() tries again later.
+  sim_.reset();
+  lost_at_ = checkpoint.cycle;
   ++rock_version_;
+  sim_ = std::make_unique<WeatheringSimulation>(SimulationSnapshot(checkpoint), simParams());
+  lost_at_ = -1;
+  history_.resize(std::size_t(sim_->cycle()));
+}
+
+void StudioSession::recover() {
+  if (!sim_) restore(checkpoints_.atOrBefore(lost_at_));
+}
+
+const WeatheringSimulation& StudioSession::simulation() const {
+  if (!sim_)
+    throw StudioError(503,
+                      "the simulation is being rebuilt after running out of memory; close other programs and "
+                      "try again");
+  return *sim_;
 }
 
 int StudioSession::cycle() const {
-  return sim_->cycle();
+  return simulation().cycle();
 }
 double StudioSession::h() const {
-  return sim_->rock().layout.h;
+  return simulation().rock().layout.h;
 }
 double StudioSession::time() const {
-  return sim_->cycle() * h();
+  return cycle() * h();
 }
 bool StudioSession::finished() const {
-  return sim_->finished();
+  return simulation().finished();
 }
 bool StudioSession::atEnd() const {
   return cycle() >= end_cycle_ || finished();
 }
 
 CycleStats StudioSession::step() {
+  recover();
   if (finished()) return {};
-  const CycleStats stats = sim_->step();
-  history_.push_back({stats.time, stats.rock, stats.exposed, stats.colluvium});
-  const int every = std::max(1, end_cycle_ / kCheckpointsPerRun);
-  if (stats.cycle % every == 0) keepCheckpoint();
-  ++rock_version_;
-  return stats;
+  const int from = cycle();
+  try {
+    const CycleStats stats = sim_->step();
+    history_.push_back({stats.time, stats.rock, stats.exposed, stats.colluvium});
+    ++rock_version_;
+    if (checkpoints_.wants(stats.cycle)) checkpoints_.keep(sim_->snapshot());
+    return stats;
+  } catch (const std::bad_alloc&) {
+    // A cycle cut short may have left the simulation half-done: back to the latest checkpoint
+    // (or, should that fail too, to be rebuilt by recover()).
+    try {
+      restore(checkpoints_.atOrBefore(from));
+    } catch (const std::bad_alloc&) {
+    }
+    throw StudioError(503, fmt::format("out of memory running the cycle after time {:.4g}: the studio went back to "
+                                       "time {:.4g} and carries on from there; close other programs or restart the "
+                                       "studio at a lower --resolution",
+                                       from * h(), time()));
+  }
 }
 
 void StudioSession::reset() {
-  restore(0);
+  recover();
+  restore(checkpoints_.atOrBefore(0));
+  checkpoints_.restart(sim_->snapshot(), checkpointSpacing());
 }
 
 int StudioSession::cycleAt(double t) const {
@@ -193,12 +231,12 @@ int StudioSession::cycleAt(double t) const {
 }
 
 void StudioSession::seek(double t) {
+  recover();
   const int target = cycleAt(t);
   // The latest checkpoint at or before the target; restore it when it is ahead of
   // the simulation (a shortcut forward) or when the target lies behind it.
-  auto it = checkpoints_.upper_bound(target);
-  --it;  // cycle 0 is always there
-  if (target < cycle() || it->first > cycle()) restore(it->first);
+  const SimulationSnapshot& nearest = checkpoints_.atOrBefore(target);
+  if (target < cycle() || nearest.cycle > cycle()) restore(nearest);
   while (cycle() < target && !finished()) step();
 }
 
@@ -246,6 +284,7 @@ std::vector<std::string> StudioSession::editOverrides(const json& part, PresetOv
 }
 
 void StudioSession::edit(const json& part) {
+  recover();
   PresetOverrides overrides;
   overrides.resolution = resolution_;
   const std::vector<std::string> paths = editOverrides(part, overrides);
@@ -258,8 +297,13 @@ void StudioSession::edit(const json& part) {
   Preset candidate = preset_;
   applyKeyframeEdit(candidate, keyframeEditOf(parsed, paths), time(), h());
   if (cycle() == 0) {  // the preset itself changed: the run starts again
-    preset_ = std::move(candidate);
-    restart();
+    std::swap(preset_, candidate);
+    try {
+      restart();
+    } catch (...) {
+      std::swap(preset_, candidate);  // the edit did not happen
+      throw;
+    }
     return;
   }
   const GridLayout now = sim_->rock().layout, then = computeGridLayout(candidate);
@@ -272,7 +316,7 @@ void StudioSession::edit(const json& part) {
   }
   preset_ = std::move(candidate);
   sim_->setKeyframes(preset_.durability.keyframes);
-  std::erase_if(checkpoints_, [&](const auto& entry) { return entry.first > cycle(); });
+  checkpoints_.dropAfter(cycle());
 }
 
 json StudioSession::state() const {
@@ -292,12 +336,16 @@ json StudioSession::state() const {
   active_preset.bubbles = bubbles;
   active_preset.response = response;
   const json active_json = presetToJson(active_preset);
+  // f sampled for the page's response graph: the page draws it, never evaluates it.
+  json response_curve = json::array();
+  for (int i = 0; i <= kResponseSamples; ++i)
+    response_curve.push_back({double(i) / kResponseSamples, applyResponse(response, double(i) / kResponseSamples)});
   json history = json::array();
   for (const auto& e : history_) history.push_back({e.time, e.rock});
   json checkpoints = json::array();
-  for (const auto& [c, snapshot] : checkpoints_) checkpoints.push_back(c * h());
-  const GridLayout& g = sim_->rock().layout;
-  const SimulationCounts counts = sim_->counts();
+  for (const int c : checkpoints_.cycles()) checkpoints.push_back(c * h());
+  const GridLayout& g = simulation().rock().layout;
+  const SimulationCounts counts = simulation().counts();
   return {{"cycle", cycle()},
           {"time", t},
           {"h", h()},
@@ -313,37 +361,34 @@ json StudioSession::state() const {
           {"grid", {{"nx", g.nx}, {"ny", g.ny}, {"nz", g.nz}, {"h", g.h}, {"margin", g.margin}}},
           {"history", history},
           {"checkpoints", checkpoints},
+          {"checkpoint_bytes", checkpoints_.bytes()},
           {"mesh_version", rock_version_},
           {"preset", presetToJson(preset_)},
           {"active",
            {{"durability", graphJson(preset_, graph)},
             {"bubbles", active_json["bubbles"]},
-            {"response", active_json["response"]}}}};
+            {"response", active_json["response"]}}},
+          {"response_curve", response_curve}};
+}
+
+void StudioSession::requireMemoryFor(const std::string& what) const {
+  const std::uint64_t needed = estimatePreviewBytes(simulation().rock().layout), free = memoryHeadroomBytes();
+  if (free < needed)
+    throw StudioError(503, fmt::format("not enough memory for {}: it needs about {} MiB and this process can take {} "
+                                       "MiB more; close other programs, or restart the studio at a lower --resolution",
+                                       what, needed >> 20, free >> 20));
 }
 
 std::string StudioSession::rockVdb() const {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("rockbake-studio-{}", ::getpid());
-  fs::create_directories(dir);
-  const fs::path file = dir / "rock.vdb";
-  writeRockVdb(sim_->rock(), file);
-  std::string bytes = readText(file);
-  fs::remove(file);
-  return bytes;
+  requireMemoryFor("rock.vdb");
+  std::ostringstream out;
+  writeRockVdb(simulation().rock(), out);
+  return std::move(out).str();
 }
 
-std::string StudioSession::previewMesh(PreviewPalette palette) const {
-  const VoxelRock& rock = sim_->rock();
-  AssetMeshes meshes = extractSurfaces(rock, {preset_.mesh.smoothing, /*preview=*/true});
-  // Curvature costs a bubble count per exposed voxel: only when it is shown.
-  const std::vector<float> exposure = palette == PreviewPalette::Curvature
-                                          ? exposureField(rock, sim_->activeParams())
-                                          : std::vector<float>(rock.layout.cellCount(), 0.5f);
-  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  PaletteParams params = paletteParams(rock, preset_.bake);
-  params.palette = palette == PreviewPalette::Natural      ? Palette::Natural
-                   : palette == PreviewPalette::Durability ? Palette::Debug
-                                                           : Palette::Curvature;
-  meshes = applyPalette(std::move(meshes), params);
+std::string StudioSession::previewMesh(Palette palette) const {
+  requireMemoryFor("the preview mesh");
+  const AssetMeshes meshes = previewMeshes(simulation().rock(), preset_, simulation().activeParams(), palette);
   std::string out = "RBPM";
   appendU32(out, 1);
   appendU32(out, std::uint32_t(cycle()));
@@ -381,9 +426,11 @@ Preset StudioSession::finalPreset() const {
 }
 
 SaveResult StudioSession::save(const std::string& name, bool overwrite) {
-  static const std::regex kName("[a-z0-9_-]{1,64}");
+  // Not starting with '-': `rockbake lint *.yaml` would read a file named -x.yaml as an option.
+  static const std::regex kName("[a-z0-9_][a-z0-9_-]{0,63}");
   if (!std::regex_match(name, kName))
-    throw StudioError(400, "name: '" + name + "' is not an asset name: use 1 to 64 of a-z, 0-9, _ and -");
+    throw StudioError(400,
+                      "name: '" + name + "' is not a save name: use 1 to 64 of a-z, 0-9, _ and -, not starting with -");
   if (cycle() == 0)
     throw StudioError(409, "run at least one cycle before saving: a saved preset bakes at least one cycle");
   const fs::path folder = file_.parent_path();

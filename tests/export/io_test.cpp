@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <random>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -368,6 +369,18 @@ TEST(RockVdb, SameRockGivesIdenticalBytesAndAHashedUuid) {
   other.durability.set(other.layout.index(8, 8, 0), other.durability[other.layout.index(8, 8, 0)] + 0.5f);
   writeRockVdb(other, dir.path() / "c.vdb");
   EXPECT_NE(readBytes(dir.path() / "c.vdb").substr(21, 36), a.substr(21, 36));
+}
+
+// The studio serves rock.vdb from memory: the same bytes as the file, written
+// after whatever the stream already holds.
+TEST(RockVdb, AStreamGetsTheFilesBytes) {
+  TempDir dir;
+  const VoxelRock rock = randomRock(21, 19, 13, 4);
+  writeRockVdb(rock, dir.path() / "a.vdb");
+  std::ostringstream out;
+  out << "prefix";
+  writeRockVdb(rock, out);
+  EXPECT_EQ(out.str(), "prefix" + readBytes(dir.path() / "a.vdb"));
 }
 
 TEST(RockVdb, BytesDoNotDependOnTheThreadCount) {

@@ -39,6 +39,14 @@ try {
   s = (await api(url, '/api/edit', { response: { power: 1.5 } })).json;
   ok(s.preset.durability.keyframes.length === 1 && s.preset.durability.keyframes[0].response.power === 1.5,
     'a second edit at the same time merges into that keyframe');
+  const curve = s.response_curve;
+  ok(curve.length === 65 && curve[0][0] === 0 && curve[64][0] === 1 &&
+     curve.every(([x, y]) => Math.abs(y - x ** 1.5) < 1e-12),
+    'the state samples the active response f = x^1.5 at 65 points (the page draws them)');
+  s = (await api(url, '/api/edit', { response: { curve: [[0, 0.1], [0.5, 0.3], [1, 0.9]] } })).json;
+  ok(Math.abs(s.response_curve[16][1] - 0.2) < 1e-12 && Math.abs(s.response_curve[48][1] - 0.6) < 1e-12,
+    'a curve response is sampled through its points');
+  s = (await api(url, '/api/edit', { response: { power: 1.5 } })).json;
   s = (await api(url, '/api/control', { run_until: 8 * h })).json;
   ok(s.cycle === 8, 'run_until runs to the cycle of that time');
   const straight = (await api(url, '/api/rock.vdb')).body;
@@ -85,7 +93,7 @@ try {
   ok((await raw(url, 'GET', '/vendor/three/build/three.module.js')).status === 200, 'three.js is served');
   ok((await raw(url, 'GET', '/')).body.toString().includes('rockbake studio'), 'the page is served');
   const big = await rawPost(url, '/api/edit', 'x'.repeat(2 * 1024 * 1024));
-  ok(big.status === 413 && big.body.includes('over 1 MB'), `a 2 MB body gets 413 with a message (${big.status} ${big.body})`);
+  ok(big.status === 413 && big.body.includes('at most 1 MiB'), `a 2 MB body gets 413 with a message (${big.status} ${big.body})`);
   await still('a 2 MB body');
   const bad = await raw(url, 'POST', '/api/edit', '{"durability": {"points": [[0, 1], ', { 'Content-Type': 'application/json' });
   ok(bad.status === 400 && JSON.parse(bad.body.toString()).error.includes('not valid JSON'), 'malformed JSON gets 400 with a message');

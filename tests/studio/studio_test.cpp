@@ -216,6 +216,7 @@ TEST(StudioSession, RefusesEditsAndSavesItCannotHonour) {
   EXPECT_EQ(status([&] { studio.save("goblin-x", false); }), 409) << "time 0 bakes one cycle: not what is shown";
   studio.step();
   EXPECT_EQ(status([&] { studio.save("../goblin-x", false); }), 400);
+  EXPECT_EQ(status([&] { studio.save("-rf", false); }), 400) << "lint *.yaml would read it as an option";
   EXPECT_EQ(status([&] { studio.save("goblin", true); }), 409);
   EXPECT_EQ(status([&] { studio.save("base", true); }), 409);
   EXPECT_EQ(status([&] { studio.seek(-1); }), 400);

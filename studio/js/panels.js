@@ -1,0 +1,69 @@
+// The transport, the stats, Save and Bake final (docs/studio.md, "The page"):
+// what the page shows of each new state, and the buttons that drive the server.
+import { api, control } from './api.js';
+import { $, showMessage } from './dom.js';
+import { state } from './state.js';
+import { fillEditors } from './editors.js';
+import { drawVolumePlot } from './graphs.js';
+import { showColluvium, updateMesh } from './view.js';
+
+// The panels from a new state (`server`: the state as the server sent it).
+export function showServerState(server) {
+  $('preset-name').textContent =
+    `${server.preset.name} · ${server.grid.nx}×${server.grid.ny}×${server.grid.nz} voxels (resolution ${server.resolution})`;
+  $('stat-cycle').textContent = server.cycle;
+  $('stat-time').textContent = server.time.toFixed(3);
+  $('stat-rock').textContent = server.rock;
+  $('stat-exposed').textContent = server.exposed;
+  $('stat-colluvium').textContent = server.colluvium;
+  $('stat-keyframes').textContent = server.preset.durability.keyframes.length;
+  $('play').textContent = server.playing ? 'pause' : 'play';
+  const timeline = $('timeline');
+  timeline.max = server.end_time;
+  timeline.step = server.h;
+  if (!state.timelineHeld) timeline.value = server.time;
+  $('time-readout').textContent =
+    `t = ${server.time.toFixed(2)} / ${server.end_time.toFixed(2)}${server.finished ? ' (end)' : ''}`;
+  if (!$('save-name').value) $('save-name').value = `${server.preset.name}-edited`;
+  $('bake-progress').value = server.bake.progress;
+  $('bake-status').textContent = server.bake.state === 'idle' ? '' : `${server.bake.state}: ${server.bake.message}`;
+  if (server.problem && server.problem !== state.problemShown) showMessage(server.problem);  // why playing stopped
+  state.problemShown = server.problem;
+  const focus = document.activeElement?.tagName;
+  if (focus !== 'INPUT' && focus !== 'SELECT') fillEditors();
+  drawVolumePlot();
+}
+
+function setupSaveAndBake() {
+  $('save').addEventListener('click', async () => {
+    try {
+      const saved = await api('/api/save', { name: $('save-name').value, overwrite: $('save-overwrite').checked });
+      showMessage(`saved ${saved.path} (time ${saved.time})`, true);
+    } catch (e) { /* shown */ }
+  });
+  $('bake').addEventListener('click', async () => {
+    try {
+      const started = await api('/api/bake', {});
+      showMessage(`baking into ${started.asset_dir}`, true);
+    } catch (e) { /* shown */ }
+  });
+}
+
+export function setupTransport() {
+  const rate = () => Number($('rate').value);
+  $('play').addEventListener('click', () =>
+    control(state.server?.playing ? { action: 'pause' } : { action: 'play', rate: rate() }));
+  $('rate').addEventListener('change', () => { if (state.server?.playing) control({ action: 'play', rate: rate() }); });
+  $('step').addEventListener('click', () => control({ action: 'step' }));
+  $('reset').addEventListener('click', () => control({ action: 'reset' }));
+  const timeline = $('timeline');
+  timeline.addEventListener('pointerdown', () => { state.timelineHeld = true; });
+  timeline.addEventListener('change', async () => {
+    await control({ seek: Number(timeline.value) });
+    state.timelineHeld = false;
+  });
+  $('run-until-go').addEventListener('click', () => control({ run_until: Number($('run-until').value) }));
+  $('palette').addEventListener('change', updateMesh);
+  $('show-colluvium').addEventListener('change', (e) => showColluvium(e.target.checked));
+  setupSaveAndBake();
+}

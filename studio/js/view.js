@@ -1,0 +1,136 @@
+// The 3-D view (docs/studio.md, "The page"): the preview mesh of GET /api/mesh
+// on a ground plane, orbit controls, and where an altitude lands on the page so
+// the graphs beside it share the rock's height scale.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { $, showMessage } from './dom.js';
+import { state } from './state.js';
+
+const container = $('view');
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+const background = new THREE.Color(0x30343a);
+scene.background = background;
+const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
+camera.up.set(0, 0, 1);
+const controls = new OrbitControls(camera, renderer.domElement);
+controls.enableDamping = false;
+scene.add(new THREE.HemisphereLight(0xdfe8ff, 0x4a4036, 1.2));
+const sun = new THREE.DirectionalLight(0xffffff, 2.0);
+sun.position.set(3, -4, 6);
+scene.add(sun);
+const ground = new THREE.Mesh(new THREE.PlaneGeometry(1, 1), new THREE.MeshStandardMaterial({ color: 0x4d4a45, roughness: 1 }));
+scene.add(ground);
+const surfaceMaterial = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.9, side: THREE.DoubleSide });
+const rockMesh = new THREE.Mesh(new THREE.BufferGeometry(), surfaceMaterial);
+const colluviumMesh = new THREE.Mesh(new THREE.BufferGeometry(), surfaceMaterial);
+scene.add(rockMesh, colluviumMesh);
+let framed = false;
+
+function resize() {
+  const w = container.clientWidth, h = container.clientHeight;
+  renderer.setSize(w, h);
+  camera.aspect = w / Math.max(1, h);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+
+function frameCamera() {
+  const g = state.server.grid;
+  const [sx, sy, sz] = state.server.preset.grid.size;
+  const target = new THREE.Vector3(sx / 2, sy / 2, sz / 2);
+  controls.target.copy(target);
+  const distance = 1.9 * Math.max(sx, sy, sz) / Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) / 2;
+  camera.position.set(target.x + distance * 0.75, target.y - distance * 0.65, target.z + distance * 0.18);
+  ground.scale.set(sx * 2.5, sy * 2.5, 1);
+  ground.position.set(sx / 2, sy / 2, -0.002 * g.h);
+  controls.update();
+  framed = true;
+}
+
+// One frame of the view (framed on the rock the first time).
+export function renderView() {
+  if (!framed) { resize(); frameCamera(); }
+  controls.update();
+  renderer.render(scene, camera);
+}
+
+export function showColluvium(visible) { colluviumMesh.visible = visible; }
+
+// Binary preview mesh (docs/studio.md, GET /api/mesh): "RBPM", version, cycle, then
+// rock and colluvium: vertex count, triangle count, positions, linear RGB colours, indices.
+function readMeshes(buffer) {
+  const data = new DataView(buffer);
+  const magic = String.fromCharCode(...new Uint8Array(buffer, 0, 4));
+  if (magic !== 'RBPM') throw new Error('not a preview mesh');
+  let offset = 12;
+  const meshes = [];
+  for (let m = 0; m < 2; ++m) {
+    const vertices = data.getUint32(offset, true);
+    const triangles = data.getUint32(offset + 4, true);
+    offset += 8;
+    const positions = new Float32Array(buffer.slice(offset, offset + 12 * vertices)); offset += 12 * vertices;
+    const colours = new Float32Array(buffer.slice(offset, offset + 12 * vertices)); offset += 12 * vertices;
+    const indices = new Uint32Array(buffer.slice(offset, offset + 12 * triangles)); offset += 12 * triangles;
+    meshes.push({ positions, colours, indices });
+  }
+  return meshes;
+}
+
+function setGeometry(mesh, data) {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(data.positions, 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(data.colours, 3));
+  geometry.setIndex(new THREE.BufferAttribute(data.indices, 1));
+  geometry.computeVertexNormals();
+  mesh.geometry.dispose();
+  mesh.geometry = geometry;
+}
+
+// Fetches the preview mesh when the rock or the palette changed since the one shown.
+export async function updateMesh() {
+  const shown = state.mesh;
+  if (!state.server || shown.loading) return;
+  const palette = $('palette').value;
+  if (shown.version === state.server.mesh_version && shown.palette === palette) return;
+  shown.loading = true;
+  try {
+    const response = await fetch(`/api/mesh?palette=${palette}`);
+    if (!response.ok) {
+      const refusal = await response.json().catch(() => ({}));
+      throw new Error(refusal.error || `GET /api/mesh: HTTP ${response.status}`);
+    }
+    const version = Number(response.headers.get('X-Mesh-Version'));
+    const [rock, colluvium] = readMeshes(await response.arrayBuffer());
+    setGeometry(rockMesh, rock);
+    setGeometry(colluviumMesh, colluvium);
+    Object.assign(shown, { version, palette, triangles: rock.indices.length / 3 });
+  } catch (e) {
+    showMessage(e.message);
+  } finally {
+    shown.loading = false;
+  }
+}
+
+// Page y (CSS pixels) of altitude a (0 ground, 1 top of grid.size) above the grid's centre.
+export function altitudeToPageY(a) {
+  const [sx, sy, sz] = state.server.preset.grid.size;
+  const p = new THREE.Vector3(sx / 2, sy / 2, a * sz).project(camera);
+  const rect = renderer.domElement.getBoundingClientRect();
+  return rect.top + (1 - (p.y + 1) / 2) * rect.height;
+}
+
+// Page rectangle the rock's bounds cover in the view, and the background colour.
+export function rockScreenBox() {
+  rockMesh.geometry.computeBoundingBox();
+  const box = rockMesh.geometry.boundingBox, rect = renderer.domElement.getBoundingClientRect();
+  let x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
+  for (let i = 0; i < 8; ++i) {
+    const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).project(camera);
+    const x = rect.left + (p.x + 1) / 2 * rect.width, y = rect.top + (1 - (p.y + 1) / 2) * rect.height;
+    x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y);
+  }
+  return { x0, y0, x1, y1, background: '#' + background.getHexString() };
+}
