@@ -1,5 +1,6 @@
 #include "sim/colluvium.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <deque>
@@ -22,6 +23,11 @@ inline bool isAir(const VoxelRock& rock, int x, int y, int z) {
 // The 8 neighbour columns, edges before corners so ties prefer the nearer.
 constexpr int kColumns[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
 
+// The smallest whole drop (voxels) steeper than tan(talus) · distance.
+int slidingDrop(double talus_slope, double distance) {
+  return 1 + int(std::min(std::floor(talus_slope * distance), 1e6));
+}
+
 }  // namespace
 
 ColluviumModel::ColluviumModel(const GridLayout& layout, const ColluviumParams& params, std::uint64_t seed)
@@ -29,6 +35,8 @@ ColluviumModel::ColluviumModel(const GridLayout& layout, const ColluviumParams& 
       params_(params),
       seed_(seed),
       talus_slope_(std::tan(params.talus_angle * std::numbers::pi / 180.0)),
+      edge_drop_(slidingDrop(talus_slope_, 1.0)),
+      corner_drop_(slidingDrop(talus_slope_, std::numbers::sqrt2)),
       yield_units_(std::llround(params.yield * double(kUnit))),
       accumulator_(std::size_t(layout.nx) * std::size_t(layout.ny), 0) {}
 
@@ -126,14 +134,42 @@ std::size_t ColluviumModel::remove(VoxelRock& rock, const std::vector<Cell>& col
     setMaterial(rock, c, Material::Air);
     changed.push_back(c);
     vacated.push_back(c);
-    const VoxelCoord p = g.coord(c);
-    // What rested on or leaned against it may now slide.
-    for (int dz = 0; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (g.contains(p.x + dx, p.y + dy, p.z + dz)) unstable.push_back(Cell(g.index(p.x + dx, p.y + dy, p.z + dz)));
   }
+  disturbedBy(rock, carried, unstable);  // what rested on or leaned against them
   return carried.size();
+}
+
+template <typename Note>
+void ColluviumModel::forEachDisturbed(const VoxelRock& rock, Cell emptied, Note note) const {
+  const GridLayout& g = layout_;
+  const std::size_t plane = std::size_t(g.nx) * std::size_t(g.ny);
+  const auto solid = [](const std::uint64_t* bits, int z) { return (bits[z / 64] >> (z % 64)) & 1u; };
+  const auto colluvium = [&](std::size_t c) {
+    if (rock.material[c] == Material::Colluvium) note(Cell(c));
+  };
+  const VoxelCoord p = g.coord(emptied);
+  const std::uint64_t* own = column(emptied % plane);
+  if (p.z + 1 < g.nz && solid(own, p.z + 1)) colluvium(emptied + plane);  // rested on it: falls
+  if (p.z > 0 && solid(own, p.z - 1)) colluvium(emptied - plane);         // covered by it: may slide
+  // A voxel beside it can slide towards this column only where the cell
+  // beside it here is air, and only if nothing covers it (a cover that
+  // leaves too is an emptied cell of its own).
+  int air_top = p.z;  // this column is air from p.z to air_top
+  while (air_top - p.z < std::max(edge_drop_, corner_drop_) && air_top + 1 < g.nz && !solid(own, air_top + 1))
+    ++air_top;
+  for (const auto& col : kColumns) {
+    const int x = p.x + col[0], y = p.y + col[1];
+    if (x < 0 || y < 0 || x >= g.nx || y >= g.ny) continue;
+    const std::uint64_t* bits = column(std::size_t(x) + std::size_t(g.nx) * std::size_t(y));
+    const int top = std::min(air_top, p.z + (col[0] != 0 && col[1] != 0 ? corner_drop_ : edge_drop_));
+    for (int z = p.z; z <= top; ++z)
+      if (solid(bits, z) && (z + 1 == g.nz || !solid(bits, z + 1))) colluvium(g.index(x, y, z));
+  }
+}
+
+void ColluviumModel::disturbedBy(const VoxelRock& rock, const std::vector<Cell>& emptied, std::vector<Cell>& unstable) {
+  track(rock);
+  for (Cell c : emptied) forEachDisturbed(rock, c, [&](Cell d) { unstable.push_back(d); });
 }
 
 void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
@@ -181,21 +217,9 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     changed.push_back(start);
     changed.push_back(at);
     vacated.push_back(start);
-    // Leaving its starting place can free the voxel it rested on (air above
-    // it now) and the neighbour columns' voxels at its level and above (a
-    // lower column beside them). Lower ones are unaffected: this column is
-    // still solid below that level.
-    const VoxelCoord p = g.coord(start);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const bool below = dx == 0 && dy == 0 && dz == -1;
-          const bool beside = (dx != 0 || dy != 0) && dz >= 0;
-          if ((below || beside) && g.contains(p.x + dx, p.y + dy, p.z + dz)) {
-            const Cell n = Cell(g.index(p.x + dx, p.y + dy, p.z + dz));
-            if (rock.material[n] == Material::Colluvium) queue.push_back(n);
-          }
-        }
+    // Leaving its starting place can unsettle what rested on it, what it
+    // covered, and what stood beside it (disturbedBy()).
+    forEachDisturbed(rock, start, [&](Cell d) { queue.push_back(d); });
   }
 }
 

@@ -35,6 +35,11 @@ class ColluviumModel {
                      std::vector<Cell>& vacated, std::vector<Cell>& unstable);
   // Moves colluvium until every pile is stable; `unstable` is consumed.
   void settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed, std::vector<Cell>& vacated);
+  // Appends to `unstable` the colluvium voxels that may have lost their rest
+  // when `emptied` (cells that were solid and are air now) emptied: the voxel
+  // above each, the one below, and those of the 8 neighbour columns from its
+  // level up to as high as the talus angle lets a stable voxel stand.
+  void disturbedBy(const VoxelRock& rock, const std::vector<Cell>& emptied, std::vector<Cell>& unstable);
   // The model keeps its own record of which cells are solid, made from the
   // rock on its first deposit, remove or settle. Every later change to
   // rock.material made elsewhere (decimation, rockfall) must be noted here
@@ -53,6 +58,10 @@ class ColluviumModel {
  private:
   // The cell a unit dropped at (x, y) from height z comes to rest in, or -1.
   std::int64_t restingCell(int x, int y, int z) const;
+  // Calls note(c) for each colluvium voxel that may have lost its rest when
+  // the cell `emptied` emptied (see disturbedBy()).
+  template <typename Note>
+  void forEachDisturbed(const VoxelRock& rock, Cell emptied, Note note) const;
   void track(const VoxelRock& rock);  // builds solid_ on first use
   // The bits of column x + nx y, z upwards.
   std::uint64_t* column(std::size_t xy) { return solid_.data() + xy * column_words_; }
@@ -64,7 +73,11 @@ class ColluviumModel {
   GridLayout layout_;
   ColluviumParams params_;
   std::uint64_t seed_;
-  double talus_slope_;                     // tan(talus_angle)
+  double talus_slope_;  // tan(talus_angle)
+  // The smallest drop (voxels) that makes a voxel slide to an edge / corner
+  // neighbour, and so also how high above an emptied cell a voxel beside it
+  // can have stood at rest.
+  int edge_drop_, corner_drop_;
   std::int64_t yield_units_;               // yield in accumulator units
   std::vector<std::int64_t> accumulator_;  // per (x, y) column
   // Solid (not air) cells, one bit per z in each (x, y) column: a unit's

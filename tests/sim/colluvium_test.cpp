@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "debris_fixtures.h"
 #include "sim/colluvium.h"
@@ -136,6 +137,67 @@ TEST(Colluvium, ShieldsTheRockItCovers) {
   }
   EXPECT_EQ(buried_min, 1.f);
   EXPECT_LT(exposed_min, 1.f);
+}
+
+// Independent checks of the settling rule's fixed point (docs/model.md §7):
+// the first colluvium voxel found over air, or that would still slide, as
+// "x,y,z" (empty when every voxel is at rest).
+std::string hangingOverAir(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  for (int z = 1; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (at(rock, x, y, z) == Material::Colluvium && at(rock, x, y, z - 1) == Material::Air)
+          return std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z);
+  return {};
+}
+
+std::string wouldSlide(const VoxelRock& rock, double talus_angle) {
+  const GridLayout& g = rock.layout;
+  const double slope = std::tan(talus_angle * std::numbers::pi / 180.0);
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        if (at(rock, x, y, z) != Material::Colluvium) continue;
+        if (z + 1 < g.nz && at(rock, x, y, z + 1) != Material::Air) continue;  // covered
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            if ((dx == 0 && dy == 0) || !g.contains(x + dx, y + dy, z)) continue;
+            if (at(rock, x + dx, y + dy, z) != Material::Air) continue;
+            int rest = z;
+            while (rest > 0 && at(rock, x + dx, y + dy, rest - 1) == Material::Air) --rest;
+            const double distance = (dx != 0 && dy != 0) ? std::numbers::sqrt2 : 1.0;
+            if (double(z - rest) > slope * distance)
+              return std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z);
+          }
+      }
+  return {};
+}
+
+// Whatever a cycle did (decimation under a pile, removal, a fall that carried
+// colluvium with it, crumbled rock), colluvium ends it at rest: on something,
+// and no steeper than its talus angle. Both checks are made after every cycle.
+TEST(Colluvium, EveryVoxelIsAtRestAfterEveryCycle) {
+  std::size_t checked = 0;
+  for (double talus : {35.0, 60.0})
+    for (std::uint64_t seed : {1u, 2u, 3u, 4u})
+      for (RockfallMode mode : {RockfallMode::Drop, RockfallMode::Crumble}) {
+        Preset p = neckPreset(seed, mode);
+        p.colluvium.talus_angle = talus;
+        WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
+        while (!sim.finished()) {
+          const CycleStats stats = sim.step();
+          const std::string where = "talus " + std::to_string(int(talus)) + ", seed " + std::to_string(seed) +
+                                    (mode == RockfallMode::Drop ? ", drop" : ", crumble") + ", cycle " +
+                                    std::to_string(stats.cycle) + ": colluvium at ";
+          const std::string over_air = hangingOverAir(sim.rock());
+          ASSERT_EQ(over_air, "") << where << over_air << " is over air";
+          const std::string sliding = wouldSlide(sim.rock(), talus);
+          ASSERT_EQ(sliding, "") << where << sliding << " is steeper than its talus angle";
+          checked += stats.colluvium;
+        }
+      }
+  EXPECT_GT(checked, 100000u);
 }
 
 }  // namespace
