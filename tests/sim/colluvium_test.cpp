@@ -5,7 +5,11 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <tuple>
 
+#include <tbb/task_arena.h>
+
+#include "core/hash.h"
 #include "debris_fixtures.h"
 #include "sim/colluvium.h"
 #include "sim/shapes.h"
@@ -53,22 +57,26 @@ std::vector<int> pileHeights(const VoxelRock& rock) {
   return heights;
 }
 
-// Drops `units` of colluvium at the centre column from high up and settles it.
-VoxelRock pourPile(double talus_angle, int units) {
+// Drops `units` of colluvium at the centre column from high up, `batch` at a
+// time (a column of them, stacked), settling after each batch. The pile
+// spreads over four settling tiles.
+VoxelRock pourPile(double talus_angle, int units, int batch = 1) {
   VoxelRock rock = emptyRock(41, 41, 40);
   ColluviumModel model(rock.layout, {1.0, talus_angle, 0.0}, 1);
   std::vector<Cell> changed, unstable, vacated;
-  for (int i = 0; i < units; ++i) {
-    // One decimated voxel at a time, high above the centre.
-    model.deposit(rock, {Cell(rock.layout.index(20, 20, 39))}, changed, unstable);
+  for (int poured = 0; poured < units; poured += batch) {
+    const std::vector<Cell> decimated(std::size_t(std::min(batch, units - poured)),
+                                      Cell(rock.layout.index(20, 20, 39)));
+    model.deposit(rock, decimated, changed, unstable);
     model.settle(rock, unstable, changed, vacated);
   }
   return rock;
 }
 
 TEST(Colluvium, PilesKeepTheirTalusAngle) {
-  for (double angle : {30.0, 45.0, 60.0}) {
-    const VoxelRock rock = pourPile(angle, 600);
+  for (const auto& [angle, batch] :
+       std::vector<std::pair<double, int>>{{30.0, 1}, {45.0, 1}, {60.0, 1}, {30.0, 20}, {45.0, 20}, {60.0, 20}}) {
+    const VoxelRock rock = pourPile(angle, 600, batch);
     EXPECT_EQ(rock.count(Material::Colluvium), 600u);
     const std::vector<int> h = pileHeights(rock);
     const double slope = std::tan(angle * std::numbers::pi / 180.0);
@@ -79,7 +87,8 @@ TEST(Colluvium, PilesKeepTheirTalusAngle) {
           for (int dx = -1; dx <= 1; ++dx) {
             const double distance = (dx != 0 && dy != 0) ? std::numbers::sqrt2 : 1.0;
             const int step = h[std::size_t(x + g.nx * y)] - h[std::size_t(x + dx + g.nx * (y + dy))];
-            ASSERT_LE(step, slope * distance + 1.0 + 1e-9) << "angle " << angle << " at " << x << "," << y;
+            ASSERT_LE(step, slope * distance + 1.0 + 1e-9)
+                << "angle " << angle << ", " << batch << " at a time, at " << x << "," << y;
           }
   }
   // A steeper angle gives a taller, narrower pile from the same debris.
@@ -172,6 +181,109 @@ std::string wouldSlide(const VoxelRock& rock, double talus_angle) {
           }
       }
   return {};
+}
+
+// A scene where settling has much to do across many tiles: a plateau of rock
+// across 4 × 4 tiles with a ledge at its side, debris dropped all over its top
+// and stacked by a tile corner, and a loose heap hanging over air. Nothing is
+// settled yet; `unstable` lists what settle() must look at.
+constexpr int kSceneX = 150, kSceneY = 140, kSceneZ = 40;
+struct SettleScene {
+  VoxelRock rock;
+  std::vector<Cell> unstable;
+};
+
+SettleScene settleScene(ColluviumModel& model) {
+  SettleScene s{emptyRock(kSceneX, kSceneY, kSceneZ), {}};
+  VoxelRock& rock = s.rock;
+  fill(rock, {24, 20, 0}, {120, 116, 14}, Material::Rock);   // the plateau
+  fill(rock, {120, 60, 0}, {132, 76, 6}, Material::Rock);    // a ledge at its side
+  fill(rock, {5, 5, 10}, {12, 9, 14}, Material::Colluvium);  // a heap over air: it falls
+  std::vector<Cell> decimated, changed;
+  for (int y = 20; y < 116; y += 2)
+    for (int x = 24; x < 120; x += 2)
+      for (int i = 0; i < 4; ++i) decimated.push_back(Cell(rock.layout.index(x, y, kSceneZ - 1)));
+  for (int i = 0; i < 24; ++i) decimated.push_back(Cell(rock.layout.index(64, 64, kSceneZ - 1)));  // by a tile corner
+  std::sort(decimated.begin(), decimated.end());
+  model.deposit(rock, decimated, changed, s.unstable);
+  for (int z = 10; z < 14; ++z)
+    for (int y = 5; y < 9; ++y)
+      for (int x = 5; x < 12; ++x) s.unstable.push_back(Cell(rock.layout.index(x, y, z)));
+  return s;
+}
+
+// The tiles of one phase settle on their own threads: the piles, and what
+// settle() reports, are the same at any thread count, with the tiles of
+// each phase taken one after another in any order, and whatever the order
+// of the voxels handed to it.
+TEST(Colluvium, SettlesTheSameAtAnyThreadCountAndInAnyOrder) {
+  struct Outcome {
+    std::vector<Material> material;
+    std::vector<Cell> changed, vacated;
+    bool operator==(const Outcome&) const = default;
+  };
+  const auto settleWith = [](int threads, std::uint64_t tile_order, std::uint64_t input_order) {
+    const GridLayout layout = emptyRock(kSceneX, kSceneY, kSceneZ).layout;
+    ColluviumModel model(layout, {1.0, 35.0, 0.0}, 7);
+    SettleScene s = settleScene(model);
+    if (input_order != 0) {  // shuffled, with every voxel listed twice
+      s.unstable.insert(s.unstable.end(), s.unstable.begin(), s.unstable.end());
+      std::sort(s.unstable.begin(), s.unstable.end(),
+                [&](Cell a, Cell b) { return counterHash(input_order, 0, 0, a) < counterHash(input_order, 0, 0, b); });
+    }
+    model.shuffleTiles(tile_order);
+    Outcome out;
+    tbb::task_arena arena(threads);
+    arena.execute([&] { model.settle(s.rock, s.unstable, out.changed, out.vacated); });
+    out.material = s.rock.material;
+    return out;
+  };
+  const Outcome reference = settleWith(1, 0, 0);
+  // Enough happened, over enough of the grid, for the order to matter.
+  const VoxelRock before = [] {
+    ColluviumModel model(emptyRock(kSceneX, kSceneY, kSceneZ).layout, {1.0, 35.0, 0.0}, 7);
+    return settleScene(model).rock;
+  }();
+  std::size_t moved = 0;
+  std::vector<int> tiles;
+  for (std::size_t c = 0; c < before.material.size(); ++c) {
+    moved += before.material[c] == Material::Colluvium && reference.material[c] != Material::Colluvium;
+    if (reference.material[c] == Material::Colluvium) {
+      const VoxelCoord p = before.layout.coord(c);
+      tiles.push_back(p.x / ColluviumModel::kSettleTile + kSceneX * (p.y / ColluviumModel::kSettleTile));
+    }
+  }
+  std::sort(tiles.begin(), tiles.end());
+  EXPECT_GT(moved, 5000u);
+  EXPECT_GE(std::unique(tiles.begin(), tiles.end()) - tiles.begin(), 12);
+  EXPECT_EQ(std::count(reference.material.begin(), reference.material.end(), Material::Colluvium),
+            std::count(before.material.begin(), before.material.end(), Material::Colluvium));
+  VoxelRock settled = before;
+  settled.material = reference.material;
+  EXPECT_EQ(hangingOverAir(settled), "");
+  EXPECT_EQ(wouldSlide(settled, 35.0), "");
+
+  for (const auto& [threads, tile_order, input_order] : std::vector<std::tuple<int, std::uint64_t, std::uint64_t>>{
+           {2, 0, 0}, {4, 0, 0}, {2, 0, 3}, {1, 1, 0}, {1, 2, 0}, {2, 3, 5}}) {
+    const Outcome out = settleWith(threads, tile_order, input_order);
+    EXPECT_TRUE(out == reference) << threads << " threads, tile order " << tile_order << ", input order "
+                                  << input_order;
+  }
+}
+
+// Through the whole simulation, with rockfall of both kinds: the same rock at
+// one thread and two.
+TEST(Colluvium, WeathersTheSameAtOneAndTwoThreads) {
+  for (RockfallMode mode : {RockfallMode::Drop, RockfallMode::Crumble}) {
+    const Preset p = neckPreset(3, mode);
+    std::vector<std::vector<Material>> materials;
+    for (int threads : {1, 2}) {
+      tbb::task_arena arena(threads);
+      arena.execute([&] { materials.push_back(weatherRock(buildInitialRock(resolveShape(p), p), p).rock.material); });
+    }
+    EXPECT_GT(std::count(materials[0].begin(), materials[0].end(), Material::Colluvium), 1000);
+    EXPECT_TRUE(materials[0] == materials[1]) << (mode == RockfallMode::Drop ? "drop" : "crumble");
+  }
 }
 
 // Whatever a cycle did (decimation under a pile, removal, a fall that carried
