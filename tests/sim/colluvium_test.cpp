@@ -11,9 +11,12 @@
 
 #include "core/hash.h"
 #include "debris_fixtures.h"
+#include "inputs/resolve_shape.h"
+#include "preset/load_preset.h"
 #include "sim/colluvium.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
+#include "test_support.h"
 
 namespace rockbake {
 namespace {
@@ -283,6 +286,27 @@ TEST(Colluvium, WeathersTheSameAtOneAndTwoThreads) {
     }
     EXPECT_GT(std::count(materials[0].begin(), materials[0].end(), Material::Colluvium), 1000);
     EXPECT_TRUE(materials[0] == materials[1]) << (mode == RockfallMode::Drop ? "drop" : "crumble");
+  }
+}
+
+// The shipped presets with the largest piles, at their own resolution: their
+// grids span 3 × 3 and 4 × 4 settling tiles, so each phase settles several
+// tiles at once. The same rock at one thread and two, every voxel at rest.
+TEST(Colluvium, ShippedPilesWeatherTheSameAtOneAndTwoThreads) {
+  for (const char* name : {"goblin", "talus-cliff"}) {
+    const Preset p = loadPreset(test::sourceDir() / "presets" / (std::string(name) + ".yaml"));
+    const VoxelRock initial = buildInitialRock(resolveShape(p), p);
+    ASSERT_GT(initial.layout.nx, 2 * ColluviumModel::kSettleTile) << name;
+    ASSERT_GT(initial.layout.ny, 2 * ColluviumModel::kSettleTile) << name;
+    std::vector<VoxelRock> rocks;
+    for (int threads : {1, 2}) {
+      tbb::task_arena arena(threads);
+      arena.execute([&] { rocks.push_back(weatherRock(initial, p).rock); });
+    }
+    EXPECT_GT(rocks[0].count(Material::Colluvium), 30000u) << name;
+    EXPECT_TRUE(rocks[0].material == rocks[1].material) << name << ": 1 vs 2 threads differ";
+    EXPECT_EQ(hangingOverAir(rocks[1]), "") << name;
+    EXPECT_EQ(wouldSlide(rocks[1], p.colluvium.talus_angle), "") << name;
   }
 }
 
