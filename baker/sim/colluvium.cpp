@@ -262,7 +262,7 @@ void ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cel
     setMaterial(rock, start, Material::Air);
     moved.push_back(start);
     moved.push_back(at);
-    if (stopped) handed_on.push_back(at);  // its own tile takes it on
+    if (stopped) handed_on.push_back(at);  // the tile it reached takes it on
     forEachDisturbed(rock, start, [&](Cell d) { (inside(d) ? cells : handed_on).push_back(d); });
   }
 }

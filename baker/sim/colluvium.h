@@ -13,10 +13,10 @@
 // each, until nothing moves; in a phase every tile of that colour settles
 // the voxels in it on its own thread, in cell order, those its moves disturb
 // queued behind. A voxel may go up to kSettleReach columns beyond its tile;
-// one that gets that far stops there and goes on in its own tile's phase.
-// Tiles of one colour are a tile apart, so no tile reads a cell another one
-// of its phase writes: the piles depend on the tiling, never on the thread
-// count or on the order a phase's tiles are taken in. Removal carries away
+// one that gets that far stops there and goes on in the phase of the tile
+// it reached. Tiles of one colour are a tile apart, so no tile reads a cell
+// another one of its phase writes: the piles depend on the tiling, never on
+// the thread count or on the order a phase's tiles are taken in. Removal carries away
 // exposed colluvium voxels with probability `removal` per cycle, decided by
 // a counter hash of (seed, cycle, cell).
 #pragma once
