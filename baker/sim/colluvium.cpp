@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -232,8 +233,8 @@ bool ColluviumModel::step(VoxelCoord& p, const VoxelCoord& lifted) const {
   return true;
 }
 
-void ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells, std::vector<Cell>& handed_on,
-                                std::vector<Cell>& moved) {
+std::uint64_t ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells,
+                                         std::vector<Cell>& handed_on, std::vector<Cell>& moved) {
   const GridLayout& g = layout_;
   const std::size_t nx = std::size_t(g.nx), plane = nx * std::size_t(g.ny);
   // How many columns the column (x, y) lies outside the tile (Chebyshev).
@@ -247,13 +248,18 @@ void ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cel
   };
   // A queue: each voxel is followed to rest before the next moves, and what
   // its leaving disturbed joins the back.
+  std::uint64_t work = 0;
   for (std::size_t head = 0; head < cells.size(); ++head) {
     const Cell start = cells[head];
     if (rock.material[start] != Material::Colluvium) continue;
     const VoxelCoord from = g.coord(start);
     VoxelCoord p = from;
     bool stopped = false;  // at the edge of what this tile may touch, perhaps not at rest
-    while (!stopped && step(p, from)) stopped = outside(p.x, p.y) == kSettleReach;
+    ++work;
+    while (!stopped && step(p, from)) {
+      stopped = outside(p.x, p.y) == kSettleReach;
+      ++work;
+    }
     const Cell at = Cell(g.index(p.x, p.y, p.z));
     if (at == start) continue;
     // The cells it passed through were held only for that moment: only its
@@ -265,6 +271,7 @@ void ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cel
     if (stopped) handed_on.push_back(at);  // the tile it reached takes it on
     forEachDisturbed(rock, start, [&](Cell d) { (inside(d) ? cells : handed_on).push_back(d); });
   }
+  return work;
 }
 
 int ColluviumModel::tileOf(Cell c) const {
@@ -286,15 +293,16 @@ void ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std:
   struct TileWork {
     int tile;
     std::vector<Cell> cells, handed_on, moved;
+    std::uint64_t work = 0;
   };
   std::vector<TileWork> tiles;
   for (std::size_t k = 0; k < keyed.size(); ++k) {
     const int tile = int(keyed[k] >> 32);
-    if (tiles.empty() || tiles.back().tile != tile) tiles.push_back({tile, {}, {}, {}});
+    if (tiles.empty() || tiles.back().tile != tile) tiles.push_back({tile, {}, {}, {}, 0});
     tiles.back().cells.push_back(Cell(keyed[k]));
   }
   const auto run = [&](TileWork& t) {
-    settleTile(rock, t.tile % tiles_x_, t.tile / tiles_x_, std::move(t.cells), t.handed_on, t.moved);
+    t.work = settleTile(rock, t.tile % tiles_x_, t.tile / tiles_x_, std::move(t.cells), t.handed_on, t.moved);
   };
   if (shuffle_seed_ == 0) {
     tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t k) { run(tiles[k]); });
@@ -305,10 +313,25 @@ void ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std:
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
     for (std::size_t k : order) run(tiles[k]);
   }
+  std::vector<std::uint64_t> work;
   for (const TileWork& t : tiles) {
     handed_on.insert(handed_on.end(), t.handed_on.begin(), t.handed_on.end());
     moved.insert(moved.end(), t.moved.begin(), t.moved.end());
+    work.push_back(t.work);
   }
+  noteWork(work);
+}
+
+void ColluviumModel::noteWork(std::vector<std::uint64_t> tile_work) {
+  std::sort(tile_work.begin(), tile_work.end(), std::greater<>());
+  std::uint64_t workers[2] = {0, 0};
+  for (std::uint64_t w : tile_work) {
+    settle_work_.work += w;
+    workers[workers[1] < workers[0] ? 1 : 0] += w;
+  }
+  if (tile_work.empty()) return;
+  settle_work_.largest_tiles += tile_work.front();
+  settle_work_.two_workers += std::max(workers[0], workers[1]);
 }
 
 void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,

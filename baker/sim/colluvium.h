@@ -80,6 +80,17 @@ class ColluviumModel {
   // shuffled by `seed` (0, the default: all at once). The result must not change.
   void shuffleTiles(std::uint64_t seed) { shuffle_seed_ = seed; }
 
+  // How much settling there was to share between threads, counted in voxels
+  // taken up plus steps made (deterministic), summed over every settle()
+  // since the model was made: all of it; the sum over phases of the largest
+  // tile's (no thread count does better); and the sum over phases of the
+  // larger of two workers' shares, tiles dealt largest first to the less
+  // loaded. work / two_workers bounds what 2 threads can gain (bench/README.md).
+  struct SettleWork {
+    std::uint64_t work = 0, largest_tiles = 0, two_workers = 0;
+  };
+  const SettleWork& settleWork() const { return settle_work_; }
+
  private:
   // The cell a unit dropped at (x, y) from height z comes to rest in, or -1.
   std::int64_t restingCell(int x, int y, int z) const;
@@ -100,10 +111,13 @@ class ColluviumModel {
   // repeats allowed) tile by tile; appends to `handed_on` the voxels outside
   // those tiles that may not be at rest, and each move's start and end to `moved`.
   void settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std::vector<Cell>& handed_on, std::vector<Cell>& moved);
+  // Adds one phase's tiles' work to settle_work_.
+  void noteWork(std::vector<std::uint64_t> tile_work);
   // Settles the voxels `cells` of tile (tx, ty); appends to `handed_on` the
   // voxels outside it that may not be at rest, and to `moved` each move.
-  void settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells, std::vector<Cell>& handed_on,
-                  std::vector<Cell>& moved);
+  // Returns its work (voxels taken up plus steps made).
+  std::uint64_t settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells, std::vector<Cell>& handed_on,
+                           std::vector<Cell>& moved);
   void track(const VoxelRock& rock);  // builds solid_ on first use
   // The bits of column x + nx y, z upwards.
   std::uint64_t* column(std::size_t xy) { return solid_.data() + xy * column_words_; }
@@ -128,6 +142,7 @@ class ColluviumModel {
   bool tracking_ = false;
   int tiles_x_;  // settling tiles along x
   std::uint64_t shuffle_seed_ = 0;
+  SettleWork settle_work_;
 };
 
 }  // namespace rockbake

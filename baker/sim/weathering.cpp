@@ -401,6 +401,7 @@ CycleStats WeatheringSimulation::step() {
   // Colluvium (docs/model.md §7): deposit, settle, carry some away, settle again.
   std::vector<Cell> unstable;
   phase_start = Clock::now();
+  const ColluviumModel::SettleWork settled_before = st.colluvium_model.settleWork();
   if (st.colluviumOn()) {
     // Colluvium that rested on, or leaned against, decimated rock may move.
     st.colluvium_model.disturbedBy(rock, decimated, unstable);
@@ -440,6 +441,10 @@ CycleStats WeatheringSimulation::step() {
   }
 
   stats.rockfall_seconds = secondsSince(phase_start);
+  const ColluviumModel::SettleWork& settled = st.colluvium_model.settleWork();
+  stats.settle_work = settled.work - settled_before.work;
+  stats.settle_largest_tiles = settled.largest_tiles - settled_before.largest_tiles;
+  stats.settle_two_workers = settled.two_workers - settled_before.two_workers;
 
   // Bring the air bits and the tracked sets up to date from the changed cells.
   for (Cell c : changed) {

@@ -223,6 +223,7 @@ TEST(Colluvium, SettlesTheSameAtAnyThreadCountAndInAnyOrder) {
   struct Outcome {
     std::vector<Material> material;
     std::vector<Cell> changed, vacated;
+    std::uint64_t work = 0, largest_tiles = 0, two_workers = 0;
     bool operator==(const Outcome&) const = default;
   };
   const auto settleWith = [](int threads, std::uint64_t tile_order, std::uint64_t input_order) {
@@ -239,6 +240,9 @@ TEST(Colluvium, SettlesTheSameAtAnyThreadCountAndInAnyOrder) {
     tbb::task_arena arena(threads);
     arena.execute([&] { model.settle(s.rock, s.unstable, out.changed, out.vacated); });
     out.material = s.rock.material;
+    out.work = model.settleWork().work;
+    out.largest_tiles = model.settleWork().largest_tiles;
+    out.two_workers = model.settleWork().two_workers;
     return out;
   };
   const Outcome reference = settleWith(1, 0, 0);
@@ -265,6 +269,11 @@ TEST(Colluvium, SettlesTheSameAtAnyThreadCountAndInAnyOrder) {
   settled.material = reference.material;
   EXPECT_EQ(hangingOverAir(settled), "");
   EXPECT_EQ(wouldSlide(settled, 35.0), "");
+  // The work is counted, and the tiles leave much of it to share: two
+  // workers' larger share is well under the whole.
+  EXPECT_GT(reference.work, moved);
+  EXPECT_LE(reference.largest_tiles, reference.two_workers);
+  EXPECT_LT(double(reference.two_workers), 0.75 * double(reference.work));
 
   for (const auto& [threads, tile_order, input_order] : std::vector<std::tuple<int, std::uint64_t, std::uint64_t>>{
            {2, 0, 0}, {4, 0, 0}, {2, 0, 3}, {1, 1, 0}, {1, 2, 0}, {2, 3, 5}}) {
