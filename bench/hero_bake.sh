@@ -1,21 +1,26 @@
 #!/usr/bin/env bash
 # The hero-resolution bake, before and after in one run: goblin `--no-mesh` at
 # a high resolution, simulation time per phase, peak memory, and whether the
-# two builds' rock.vdb files are byte-identical. Figures: bench/README.md.
+# builds' rock.vdb files are the same. Figures: bench/README.md.
 #
 # Usage: bench/hero_bake.sh BASELINE_ROCKBAKE [RESOLUTION=384] [OUT=/tmp/hero-bake] [SCALING_RESOLUTION]
 #   BASELINE_ROCKBAKE   the rockbake executable to compare against
 #   SCALING_RESOLUTION  resolution of the thread-scaling runs (default RESOLUTION)
-# The rock is goblin as its targets were set: without the geology it has
-# since gained (`--set shape.variation=null --set durability.joints=null`).
-# BASELINE_PRESET (environment) is the goblin preset the baseline reads, for a
-# baseline that predates those keys (default presets/goblin.yaml).
-# PREVIOUS_ROCKBAKE (environment), when set, is a second build to compare
-# against (say, the previous commit's), baked after the baseline at 2 threads.
+# Environment:
+#   GOBLIN_SETS        `--set` overrides for this build's goblin, space-separated
+#                      (default none: the shipped preset). The first hero
+#                      figures were taken with `shape.variation=null
+#                      durability.joints=null`, goblin before its geology.
+#   BASELINE_PRESET    the goblin preset the baseline reads, for a baseline that
+#                      predates keys of this one (default presets/goblin.yaml,
+#                      with GOBLIN_SETS)
+#   PREVIOUS_ROCKBAKE  a second build to compare against (say, the previous
+#                      commit's), baked after the baseline at 2 threads
+#   BASELINE_THREADS   also bake the baseline at 1 thread (default 1: yes)
 # Runs, one after another (run it alone on the machine):
-#   baseline and this build at 2 threads (RESOLUTION); then at
-#   SCALING_RESOLUTION this build at 2 threads and at 1 thread, and two copies
-#   of it at 1 thread at once (the machine's own ceiling for two
+#   the baseline at 2 threads (and at 1), this build at 2 threads (RESOLUTION);
+#   then at SCALING_RESOLUTION this build at 2 threads and at 1 thread, and two
+#   copies of it at 1 thread at once (the machine's own ceiling for two
 #   single-threaded workers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,14 +31,15 @@ scaling=${4:-$resolution}
 current=build/baker/rockbake
 [ -x "$current" ] || current=$(find build -name rockbake -type f -perm -u+x | head -n 1)
 preset=presets/goblin.yaml
-baseline_preset=${BASELINE_PRESET:-$preset}
+sets=()
+for s in ${GOBLIN_SETS:-}; do sets+=(--set "$s"); done
 rm -rf "$out"
 mkdir -p "$out"
 
 # bake NAME EXECUTABLE THREADS [RESOLUTION]: one bake with its peak memory (GNU time).
 bake() {
-  local input=("$preset" --set shape.variation=null --set durability.joints=null)
-  [ "$2" = "$baseline" ] && input=("$baseline_preset")
+  local input=("$preset" "${sets[@]}")
+  [ "$2" = "$baseline" ] && [ -n "${BASELINE_PRESET:-}" ] && input=("$BASELINE_PRESET")
   /usr/bin/time -f '%M' -o "$out/$1.rss" "$2" bake "${input[@]}" --no-mesh --resolution "${4:-$resolution}" \
     --threads "$3" -o "$out/$1" > "$out/$1.log" 2>&1
 }
@@ -54,6 +60,10 @@ PY
 
 bake baseline "$baseline" 2
 report baseline
+if [ "${BASELINE_THREADS:-1}" = 1 ]; then
+  bake baseline-1 "$baseline" 1
+  report baseline-1
+fi
 if [ -n "${PREVIOUS_ROCKBAKE:-}" ]; then
   bake previous "$PREVIOUS_ROCKBAKE" 2
   report previous
@@ -67,10 +77,10 @@ fi
 if cmp -s "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb"; then
   echo "rock.vdb: byte-identical to the baseline's"
 elif build/bench/rockbake_vdb_same "$out/baseline/goblin/rock.vdb" "$out/current/goblin/rock.vdb" > /dev/null; then
-  # The asset's frame (pivot) and metadata changed after the baseline; the grids did not.
+  # A baseline that frames the asset differently (pivot, metadata) may still hold the same grids.
   echo "rock.vdb: the same grids as the baseline's (transform and metadata differ)"
 else
-  echo "rock.vdb: DIFFERS from the baseline's"
+  echo "rock.vdb: other grids than the baseline's"
 fi
 echo "thread scaling at resolution $scaling:"
 bake current-2 "$current" 2 "$scaling"

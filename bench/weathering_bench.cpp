@@ -10,7 +10,9 @@
 //   BM_CycleFixedRock/N: one cycle of the same 32³ rock in an N³ grid: the
 //     cost must follow the exposed voxels, not the grid's volume.
 //   BM_CycleWithDebris/N/threads: a cycle of an N³ cube on the ground with
-//     rockfall and colluvium on; counters give each phase's share.
+//     rockfall and colluvium on; counters give each phase's share, and how
+//     far settling's tiles let 2 threads (settle_2t_bound) and any number
+//     (settle_bound) speed settling up.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -200,10 +202,17 @@ void BM_CycleWithDebris(benchmark::State& state) {
   WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
   for (int i = 0; i < 5; ++i) sim.step();
   double curvature = 0, colluvium = 0, rockfall = 0;
+  double settle_work = 0, largest_tiles = 0, two_workers = 0;
   for (auto _ : state) {
     const CycleStats c = sim.step();
     curvature += c.curvature_seconds, colluvium += c.colluvium_seconds, rockfall += c.rockfall_seconds;
+    settle_work += double(c.settle_work), largest_tiles += double(c.settle_largest_tiles);
+    two_workers += double(c.settle_two_workers);
   }
+  // What the settling tiles leave to share (deterministic): the speed-up of
+  // settling that 2 threads, and any number, could reach at most.
+  state.counters["settle_2t_bound"] = settle_work / two_workers;
+  state.counters["settle_bound"] = settle_work / largest_tiles;
   const double total = curvature + colluvium + rockfall;
   state.counters["curvature_share"] = curvature / total;
   state.counters["colluvium_share"] = colluvium / total;

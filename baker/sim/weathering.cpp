@@ -405,17 +405,10 @@ CycleStats WeatheringSimulation::step() {
   // Colluvium (docs/model.md §7): deposit, settle, carry some away, settle again.
   std::vector<Cell> unstable;
   phase_start = Clock::now();
+  const ColluviumModel::SettleWork settled_before = st.colluvium_model.settleWork();
   if (st.colluviumOn()) {
     // Colluvium that rested on, or leaned against, decimated rock may move.
-    for (Cell c : decimated) {
-      const VoxelCoord p = g.coord(c);
-      for (int dz = 0; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (g.contains(p.x + dx, p.y + dy, p.z + dz) &&
-                rock.material[g.index(p.x + dx, p.y + dy, p.z + dz)] == Material::Colluvium)
-              unstable.push_back(Cell(g.index(p.x + dx, p.y + dy, p.z + dz)));
-    }
+    st.colluvium_model.disturbedBy(rock, decimated, unstable);
     stats.deposited = st.colluvium_model.deposit(rock, decimated, changed, unstable);
     st.colluvium_model.settle(rock, unstable, changed, vacated);
     if (st.colluvium) {
@@ -425,8 +418,10 @@ CycleStats WeatheringSimulation::step() {
     st.colluvium_model.settle(rock, unstable, changed, vacated);
   }
 
-  // Rockfall (docs/model.md §6): until nothing floats. Crumbled rock settles as
-  // colluvium, which can uncover more to fall.
+  // Rockfall (docs/model.md §6): until nothing floats. What fell and what it
+  // fell from can leave colluvium out of rest (crumbled rock, colluvium carried
+  // down with a piece, piles that leaned on it); it settles, which may uncover
+  // more to fall.
   stats.colluvium_seconds = secondsSince(phase_start);
   phase_start = Clock::now();
   if (st.rockfallOn()) {
@@ -436,16 +431,24 @@ CycleStats WeatheringSimulation::step() {
       stats.fallen += fall.fallen;
       stats.crumbled += fall.crumbled;
       changed.insert(changed.end(), fall.changed.begin(), fall.changed.end());
-      if (st.colluviumOn()) st.colluvium_model.noteChanged(rock, fall.changed);
-      if (fall.fallen == 0 || fall.crumbled == 0 || !st.colluviumOn()) break;
-      for (Cell c : fall.changed)
+      if (fall.fallen == 0 || !st.colluviumOn()) break;
+      st.colluvium_model.noteChanged(rock, fall.changed);
+      std::vector<Cell> emptied;
+      for (Cell c : fall.changed) {
         if (rock.material[c] == Material::Colluvium) unstable.push_back(c);
+        if (rock.material[c] == Material::Air) emptied.push_back(c);
+      }
+      st.colluvium_model.disturbedBy(rock, emptied, unstable);
       st.colluvium_model.settle(rock, unstable, changed, vacated);
       if (vacated.empty()) break;
     }
   }
 
   stats.rockfall_seconds = secondsSince(phase_start);
+  const ColluviumModel::SettleWork& settled = st.colluvium_model.settleWork();
+  stats.settle_work = settled.work - settled_before.work;
+  stats.settle_largest_tiles = settled.largest_tiles - settled_before.largest_tiles;
+  stats.settle_two_workers = settled.two_workers - settled_before.two_workers;
 
   // Bring the air bits and the tracked sets up to date from the changed cells.
   for (Cell c : changed) {

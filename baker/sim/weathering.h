@@ -34,6 +34,9 @@ struct CycleStats {
   std::size_t removed = 0;    // colluvium voxels carried away
   std::size_t deposited = 0;  // colluvium voxels created from decimated rock
   std::size_t crumbled = 0;   // fallen rock voxels turned into colluvium
+  // Colluvium settling's work this cycle, and the parts of it that bound
+  // what threads can share (ColluviumModel::SettleWork; for benchmarks).
+  std::uint64_t settle_work = 0, settle_largest_tiles = 0, settle_two_workers = 0;
   // Wall-clock seconds of the cycle's phases (for profiles; not deterministic).
   double curvature_seconds = 0.0;
   double colluvium_seconds = 0.0;
