@@ -9,6 +9,7 @@
 
 #include "collision/hull_checks.h"
 #include "export/collision_glb.h"
+#include "export/glb_file.h"
 #include "mesh/extract_surfaces.h"
 
 namespace rockbake {
@@ -32,11 +33,17 @@ std::vector<T> accessorValues(const tinygltf::Model& model, int index, int compo
   return values;
 }
 
+// Built on the surface's mesh in rock.glb, which Unreal pairs them with: the
+// name between UCX_ and the last underscore (docs/collision.md).
 TEST(CollisionGlb, NodeNamesForEachEngine) {
-  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "rock", 0), "UCX_rock_00");
-  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "colluvium", 12), "UCX_colluvium_12");
-  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "rock", 3), "rock_03-convcolonly");
-  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "colluvium", 0), "colluvium_00-convcolonly");
+  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "rock", 0), "UCX_rock_lod0_00");
+  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "colluvium", 12), "UCX_colluvium_lod0_12");
+  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "rock", 3), "rock_lod0_03-convcolonly");
+  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "colluvium", 0), "colluvium_lod0_00-convcolonly");
+  for (const char* surface : {"rock", "colluvium"}) {
+    const std::string name = collisionNodeName(HullNaming::Unreal, surface, 7);
+    EXPECT_EQ(name.substr(4, name.rfind('_') - 4), glbMeshName(surface, 0)) << name;
+  }
 }
 
 TEST(CollisionGlb, HullsInTheAssetFrame) {
