@@ -44,6 +44,7 @@
 #include "inputs/resolve_shape.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
+#include "mesh/fold_over_repair.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
