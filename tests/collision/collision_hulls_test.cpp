@@ -24,10 +24,7 @@
 namespace rockbake {
 namespace {
 
-using test::cross;
-using test::dot;
 using test::expectClosedConvexOutward;
-using test::sub;
 using test::weatheredGoblin;
 
 // An all-air grid on the ground, h = 0.25, with `solid` deciding which cells are rock.
