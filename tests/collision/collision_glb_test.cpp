@@ -3,10 +3,7 @@
 // the engine, positions and indices only, each closed, convex and outward.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
-#include <tiny_gltf.h>
-
+#include "collision/glb_reading.h"
 #include "collision/hull_checks.h"
 #include "export/collision_glb.h"
 #include "export/glb_file.h"
@@ -15,23 +12,8 @@
 namespace rockbake {
 namespace {
 
-tinygltf::Model readGlb(const std::filesystem::path& file) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
-  return model;
-}
-
-template <typename T>
-std::vector<T> accessorValues(const tinygltf::Model& model, int index, int components) {
-  const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
-  const tinygltf::BufferView& v = model.bufferViews[std::size_t(a.bufferView)];
-  std::vector<T> values(a.count * std::size_t(components));
-  std::memcpy(values.data(), model.buffers[std::size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset,
-              values.size() * sizeof(T));
-  return values;
-}
+using test::accessorValues;
+using test::readGlb;
 
 // Built on the surface's mesh in rock.glb, which Unreal pairs them with: the
 // name between UCX_ and the last underscore (docs/collision.md).
