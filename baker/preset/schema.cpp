@@ -575,7 +575,8 @@ const MapSpec<CollisionParams>& collisionSpec() {
           k("colluvium", &CollisionParams::colluvium, boolean(), "also hull the colluvium, in hulls of its own"),
       },
       {},
-      "Written to `collision.glb` when `export` lists `collision` ([collision.md](collision.md))."};
+      "Written to `collision.glb` when `export` lists `collision` and the bake has meshes "
+      "([collision.md](collision.md))."};
   return spec;
 }
 
