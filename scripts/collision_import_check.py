@@ -1,7 +1,7 @@
 """Import collision.glb into Blender as an artist would, and check what arrives.
 
     blender --background --factory-startup --python-exit-code 1 \\
-        --python scripts/collision_import_check.py -- EXPECTED.json
+        --python scripts/collision_import_check.py -- EXPECTED.json [ASSET_FOLDER]
 
 EXPECTED.json (written by tests/collision/write_collision_sample.cpp) lists
 the files beside it and, per file, every hull node: name, vertices,
@@ -11,9 +11,16 @@ check fails (exit 1, naming what failed) unless the objects are exactly
 the nodes, by name (no .001), each a closed, convex mesh with its normals
 outward and its vertices and triangles, standing where the file put it
 (z up in Blender, origin at the pivot).
+
+ASSET_FOLDER, a baked asset: its rock.glb and collision.glb are imported into
+one scene, as an artist pairs them; every hull asset.json lists must arrive
+under its name, closed and convex, with asset.json's vertex count and volume
+(m³ times units_per_meter³), beside the rock.glb object its name pairs with
+(UCX_<mesh>_NN, <mesh>_NN-convcolonly).
 """
 import json
 import os
+import re
 import sys
 
 import bmesh
@@ -25,7 +32,9 @@ import numpy
 if "bool" not in numpy.__dict__:
     numpy.bool = numpy.bool_
 
-expected_file = sys.argv[sys.argv.index("--") + 1]
+arguments = sys.argv[sys.argv.index("--") + 1:]
+expected_file = arguments[0]
+asset_folder = arguments[1] if len(arguments) > 1 else None
 folder = os.path.dirname(os.path.abspath(expected_file))
 expected = json.load(open(expected_file))
 failures = []
@@ -81,6 +90,45 @@ for entry in expected["files"]:
         obj = objects.get(node["name"])
         if check(obj is not None and obj.type == "MESH", f"{entry['file']}: no mesh object {node['name']}") == "ok":
             inspect(obj, node)
+
+
+
+def check_asset(folder):
+    asset = json.load(open(os.path.join(folder, "asset.json")))
+    collision = asset["collision"]
+    units3 = asset["units_per_meter"] ** 3
+    print(f"== {folder}: rock.glb and {collision['file']} ({collision['naming']} names)")
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.import_scene.gltf(filepath=os.path.join(folder, "rock.glb"))
+    render_objects = sorted(o.name for o in bpy.data.objects)
+    bpy.ops.import_scene.gltf(filepath=os.path.join(folder, collision["file"]))
+    objects = {o.name: o for o in bpy.data.objects}
+    hull_names = sorted(h["node"] for h in collision["hulls"])
+    names = sorted(n for n in objects if n not in render_objects)
+    print(f"  names: {check(names == hull_names, 'hull objects ' + str(names))} "
+          f"({len(names)} hulls beside {' '.join(render_objects)})")
+    pattern = r"UCX_(.+)_\d\d" if collision["naming"] == "unreal" else r"(.+)_\d\d-convcolonly"
+    for hull in collision["hulls"]:
+        name = hull["node"]
+        obj = objects.get(name)
+        if check(obj is not None and obj.type == "MESH", f"no mesh object {name}") != "ok":
+            continue
+        paired = re.fullmatch(pattern, name)
+        check(paired is not None and paired.group(1) in render_objects, f"{name} pairs with no object of rock.glb")
+        bm = bmesh.new()
+        bm.from_mesh(obj.data)
+        closed = all(e.is_manifold for e in bm.edges)
+        volume = bm.calc_volume(signed=True)
+        bm.free()
+        wanted = hull["volume_m3"] * units3
+        print(f"  {name}: pairs with {paired.group(1) if paired else None}; {len(obj.data.vertices)} vertices "
+              f"{check(len(obj.data.vertices) == hull['vertices'], name + ' vertices')}; closed "
+              f"{check(closed, name + ' not closed')}; volume {volume:.6g} "
+              f"{check(abs(volume - wanted) <= 1e-4 * wanted + 1e-9, name + ' volume')} (asset.json {wanted:.6g})")
+
+
+if asset_folder:
+    check_asset(asset_folder)
 
 if failures:
     print(f"FAIL: {len(failures)} checks: " + "; ".join(failures))

@@ -10,13 +10,10 @@
 #include "collision/air_count.h"
 #include "collision/merge_parts.h"
 #include "collision/reduce_hull.h"
-#include "collision/vec3_ops.h"
 #include "collision/voxel_parts.h"
 
 namespace rockbake {
 namespace {
-using namespace collision_detail;
-
 // About how many parts the material is cut into (docs/collision.md, "Parts"),
 // whatever the resolution: enough that a part rarely spans a concavity, few
 // enough that merging them stays well within a second. Blocks are about 60 %
@@ -48,7 +45,7 @@ ConvexHull finishHull(const MergedPiece& piece, int max_vertices, const GridLayo
   hull.voxels = piece.voxels;
   hull.triangles = t.triangles;
   hull.positions.reserve(t.vertices.size());
-  for (const Vec3d& v : t.vertices) hull.positions.push_back(layout.origin + layout.h * v);
+  for (const Vec3d& v : t.vertices) hull.positions.push_back(add(layout.origin, scale(v, layout.h)));
   for (const auto& tri : hull.triangles)
     hull.volume += dot(hull.positions[tri[0]], cross(hull.positions[tri[1]], hull.positions[tri[2]])) / 6.0;
   return hull;

@@ -6,20 +6,17 @@
 #include <tbb/parallel_for.h>
 
 #include "collision/point_hull.h"
-#include "collision/vec3_ops.h"
 
 namespace rockbake {
 namespace {
-using namespace collision_detail;
-
 std::vector<HullPlane> facePlanes(const ConvexHull& hull) {
   std::vector<HullPlane> planes;
   for (const auto& t : hull.triangles) {
     const Vec3d& a = hull.positions[t[0]];
-    const Vec3d n = cross(hull.positions[t[1]] - a, hull.positions[t[2]] - a);
+    const Vec3d n = cross(sub(hull.positions[t[1]], a), sub(hull.positions[t[2]], a));
     const double len = length(n);
     if (len == 0.0) continue;
-    planes.push_back({(1.0 / len) * n, dot(n, a) / len});
+    planes.push_back({scale(n, 1.0 / len), dot(n, a) / len});
   }
   return planes;
 }

@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "collision/reduce_hull.h"
+#include "core/disjoint_set.h"
 
 namespace rockbake {
 namespace {
@@ -224,31 +225,22 @@ class Merger {
   // to the end, and the rest would have to merge around it.
   std::vector<Pair> linkComponents(const std::vector<Pair>& adjacent) const {
     constexpr std::size_t kLinks = 4;
-    // Components of the touching graph (a small disjoint-set, to be replaced
-    // by the core's once it has one).
-    std::vector<std::uint32_t> root(nodes_.size());
-    for (std::uint32_t i = 0; i < root.size(); ++i) root[i] = i;
-    const auto find = [&](std::uint32_t i) {
-      while (root[i] != i) i = root[i] = root[root[i]];
-      return i;
-    };
-    for (const auto& [a, b] : adjacent) {
-      const std::uint32_t ra = find(a), rb = find(b);
-      root[std::max(ra, rb)] = std::min(ra, rb);
-    }
-    for (std::uint32_t i = 0; i < root.size(); ++i) root[i] = find(i);
-    if (std::all_of(root.begin(), root.end(), [](std::uint32_t r) { return r == 0; })) return {};
+    // Components of the touching graph, numbered by their smallest parts.
+    DisjointSet touching(nodes_.size());
+    for (const auto& [a, b] : adjacent) touching.unite(a, b);
+    const std::vector<std::uint32_t> component = touching.labels();
+    if (std::all_of(component.begin(), component.end(), [](std::uint32_t r) { return r == 0; })) return {};
     // Each part's nearest part in another component.
     std::vector<std::pair<double, std::uint32_t>> nearest(nodes_.size(), {1e300, 0});
     tbb::parallel_for(std::size_t(0), nodes_.size(), [&](std::size_t i) {
       for (std::uint32_t j = 0; j < nodes_.size(); ++j)
-        if (root[j] != root[i]) nearest[i] = std::min(nearest[i], {boxGap2(nodes_[i], nodes_[j]), j});
+        if (component[j] != component[i]) nearest[i] = std::min(nearest[i], {boxGap2(nodes_[i], nodes_[j]), j});
     });
     // Each component's kLinks best.
     std::vector<std::vector<std::pair<double, Pair>>> best(nodes_.size());
     for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
       const std::uint32_t j = nearest[i].second;
-      best[root[i]].push_back({nearest[i].first, {std::min(i, j), std::max(i, j)}});
+      best[component[i]].push_back({nearest[i].first, {std::min(i, j), std::max(i, j)}});
     }
     std::vector<Pair> links;
     for (auto& list : best) {

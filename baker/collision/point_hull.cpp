@@ -11,12 +11,8 @@
 #include <libqhullcpp/QhullFacetList.h>
 #include <libqhullcpp/QhullVertexSet.h>
 
-#include "collision/vec3_ops.h"
-
 namespace rockbake {
 namespace {
-using namespace collision_detail;
-
 std::vector<double> flatten(const std::vector<Vec3d>& points) {
   std::vector<double> coords;
   coords.reserve(3 * points.size());
@@ -81,7 +77,7 @@ TriangulatedHull triangulateHull(const std::vector<Vec3d>& points) {
     if (corner != 3) throw std::runtime_error("Qhull gave a facet of " + std::to_string(corner) + " vertices with Qt");
     const double* n = f.hyperplane().coordinates();
     const Vec3d& a = hull.vertices[t[0]];
-    if (dot(cross(hull.vertices[t[1]] - a, hull.vertices[t[2]] - a), Vec3d{n[0], n[1], n[2]}) < 0)
+    if (dot(cross(sub(hull.vertices[t[1]], a), sub(hull.vertices[t[2]], a)), Vec3d{n[0], n[1], n[2]}) < 0)
       std::swap(t[1], t[2]);
     hull.triangles.push_back(t);
   }
@@ -117,13 +113,13 @@ Polytope intersectHalfSpaces(const std::vector<HullPlane>& planes, const Vec3d& 
     if (face.size() < 3) continue;
     const Vec3d& n = planes[k].normal;
     Vec3d centre{};
-    for (const std::uint32_t v : face) centre = centre + polytope.vertices[v];
-    centre = (1.0 / double(face.size())) * centre;
+    for (const std::uint32_t v : face) centre = add(centre, polytope.vertices[v]);
+    centre = scale(centre, 1.0 / double(face.size()));
     const Vec3d u = std::abs(n[0]) < 0.9 ? cross(n, Vec3d{1, 0, 0}) : cross(n, Vec3d{0, 1, 0});
     const Vec3d w = cross(n, u);
     std::vector<std::pair<double, std::uint32_t>> around;
     for (const std::uint32_t v : face) {
-      const Vec3d d = polytope.vertices[v] - centre;
+      const Vec3d d = sub(polytope.vertices[v], centre);
       around.push_back({std::atan2(dot(d, w), dot(d, u)), v});
     }
     std::sort(around.begin(), around.end());

@@ -5,12 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "collision/vec3_ops.h"
-
 namespace rockbake {
 namespace {
-using namespace collision_detail;
-
 // Planes tried, in order of the volume they cut off, before the search stops
 // at the cap (each try is one half-space intersection).
 constexpr std::size_t kAttemptsAtCap = 8;
@@ -18,7 +14,7 @@ constexpr std::size_t kAttemptsAtCap = 8;
 // Signed volume of the tetrahedron (o, a, b, c), positive when a, b, c run
 // counter-clockwise seen from outside.
 double tetraVolume(const Vec3d& o, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  return dot(a - o, cross(b - o, c - o)) / 6.0;
+  return dot(sub(a, o), cross(sub(b, o), sub(c, o))) / 6.0;
 }
 
 // The volume of the polytope on the far side of the plane (normal · x >
@@ -26,7 +22,7 @@ double tetraVolume(const Vec3d& o, const Vec3d& a, const Vec3d& b, const Vec3d& 
 // side; with the apex on the plane the cut face adds nothing, so the clipped
 // faces' cones from the apex sum to the volume.
 double volumeBeyond(const Polytope& p, const std::vector<double>& height, const HullPlane& plane) {
-  const Vec3d apex = plane.offset * plane.normal;  // on the plane (unit normal)
+  const Vec3d apex = scale(plane.normal, plane.offset);  // on the plane (unit normal)
   double volume = 0.0;
   std::vector<Vec3d> corners;
   for (const std::vector<std::uint32_t>& face : p.faces) {
@@ -38,7 +34,8 @@ double volumeBeyond(const Polytope& p, const std::vector<double>& height, const 
       const std::uint32_t a = face[i], b = face[(i + 1) % face.size()];
       if (height[a] > 0) corners.push_back(p.vertices[a]);
       if ((height[a] > 0) != (height[b] > 0))
-        corners.push_back(p.vertices[a] + (height[a] / (height[a] - height[b])) * (p.vertices[b] - p.vertices[a]));
+        corners.push_back(
+            add(p.vertices[a], scale(sub(p.vertices[b], p.vertices[a]), height[a] / (height[a] - height[b]))));
     }
     for (std::size_t k = 1; k + 1 < corners.size(); ++k)
       volume += tetraVolume(apex, corners[0], corners[k], corners[k + 1]);
@@ -56,12 +53,12 @@ CappedHull reduceHull(const PointHull& hull, int max_vertices) {
   Vec3d lo = hull.vertices.front(), hi = lo, centre{};
   for (const Vec3d& v : hull.vertices) {
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], v[a]), hi[a] = std::max(hi[a], v[a]);
-    centre = centre + v;
+    centre = add(centre, v);
   }
-  centre = (1.0 / double(hull.vertices.size())) * centre;  // strictly inside: the hull has volume
-  double scale = 0.0;
-  for (int a = 0; a < 3; ++a) scale = std::max(scale, hi[a] - lo[a]);
-  const double tolerance = 1e-9 * scale;
+  centre = scale(centre, 1.0 / double(hull.vertices.size()));  // strictly inside: the hull has volume
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, hi[a] - lo[a]);
+  const double tolerance = 1e-9 * extent;
 
   // Qhull's merged facets hold the vertices within its rounding; each offset
   // is made tight on them, so that every half-space holds the whole hull.

@@ -11,6 +11,7 @@
 #include <tiny_gltf.h>
 
 #include "core/atomic_file.h"
+#include "export/glb_file.h"
 
 namespace rockbake {
 namespace {
@@ -83,11 +84,13 @@ void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot,
 }  // namespace
 
 std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index) {
+  // Unreal pairs UCX_<name>_<anything> with the mesh <name> of the same import (docs/collision.md).
+  const std::string render_mesh = glbMeshName(surface, 0);
   switch (naming) {
     case HullNaming::Unreal:
-      return fmt::format("UCX_{}_{:02}", surface, index);
+      return fmt::format("UCX_{}_{:02}", render_mesh, index);
     case HullNaming::Godot:
-      return fmt::format("{}_{:02}-convcolonly", surface, index);
+      return fmt::format("{}_{:02}-convcolonly", render_mesh, index);
   }
   throw std::logic_error("collisionNodeName: unknown naming");
 }

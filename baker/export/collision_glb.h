@@ -17,7 +17,9 @@
 namespace rockbake {
 
 // The node (and mesh) name of `surface`'s ("rock", "colluvium") hull `index`
-// (0..99): Unreal "UCX_rock_00", Godot "rock_00-convcolonly".
+// (0..99), built on the name of the surface's mesh in rock.glb (glbMeshName(surface, 0),
+// "rock_lod0"), so that Unreal pairs the hulls with that mesh: Unreal
+// "UCX_rock_lod0_00", Godot "rock_lod0_00-convcolonly".
 std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index);
 
 // `pivot`: the world position of the asset's origin (footprintPivot). The rock's

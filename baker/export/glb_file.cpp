@@ -94,7 +94,7 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   model.materials.push_back(material);
   prim.material = int(model.materials.size() - 1);
 
-  const std::string name = m.name + "_lod" + std::to_string(lod);
+  const std::string name = glbMeshName(m.name, lod);
   tinygltf::Mesh mesh;
   mesh.name = name;
   mesh.primitives.push_back(prim);
@@ -107,6 +107,10 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
 }
 
 }  // namespace
+
+std::string glbMeshName(const std::string& surface, int lod) {
+  return surface + "_lod" + std::to_string(lod);
+}
 
 void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod) {
   tinygltf::Model model;

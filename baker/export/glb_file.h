@@ -15,10 +15,15 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "core/surface_mesh.h"
 
 namespace rockbake {
+
+// The name of `surface`'s ("rock", "colluvium") mesh and node in LOD `lod`'s file:
+// "rock_lod0". Engines pair other files' nodes with it (collision_glb.h).
+std::string glbMeshName(const std::string& surface, int lod);
 
 // Throws std::runtime_error on failure.
 // `lod` names the nodes and meshes: rock_lod0, colluvium_lod0, … (so LODs

@@ -30,6 +30,27 @@ std::array<double, 3> averageColor(const AssetMeshes& meshes) {
   return {sum[0] / area, sum[1] / area, sum[2] / area};
 }
 
+namespace {
+
+// Volumes in cubic metres, to the cubic millimetre.
+nlohmann::ordered_json collisionJson(const AssetCollision& collision, double units_per_meter) {
+  nlohmann::ordered_json hulls = nlohmann::ordered_json::array();
+  std::size_t vertices = 0;
+  const double units3_per_m3 = units_per_meter * units_per_meter * units_per_meter;
+  for (const AssetHull& h : collision.hulls) {
+    hulls.push_back(
+        {{"node", h.node}, {"vertices", h.vertices}, {"volume_m3", std::round(1e9 * h.volume / units3_per_m3) / 1e9}});
+    vertices += h.vertices;
+  }
+  return {{"file", collision.file},
+          {"naming", collision.naming},
+          {"hull_count", collision.hulls.size()},
+          {"vertex_count", vertices},
+          {"hulls", hulls}};
+}
+
+}  // namespace
+
 nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   if (asset.lods.empty() || !asset.lods.front().meshes) throw std::invalid_argument("asset.json needs LOD0");
   const AssetMeshes& lod0 = *asset.lods.front().meshes;
@@ -67,6 +88,7 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
       {"linear",
        {std::round(1e4 * linear[0]) / 1e4, std::round(1e4 * linear[1]) / 1e4, std::round(1e4 * linear[2]) / 1e4}}};
   j["preview"] = asset.preview.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.preview);
+  if (asset.collision) j["collision"] = collisionJson(*asset.collision, asset.units_per_meter);
   j["input_hash"] = asset.input_hash;
   return j;
 }

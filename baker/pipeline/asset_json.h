@@ -6,13 +6,18 @@
 //    "pivot": "footprint-centre-on-ground", "up_axis": "z" (PLY, VDB) / "y" (GLB, OBJ),
 //    "lods": [{"level", "file", "triangles", "vertices"}, ..],   // level 0 first; both surfaces counted
 //    "average_color": {"srgb": "#rrggbb", "linear": [r, g, b]},  // area-weighted over LOD0
-//    "preview": "render.png" | null, "input_hash"}
+//    "preview": "render.png" | null,
+//    "collision": {"file": "collision.glb", "naming": "unreal" | "godot", "hull_count", "vertex_count",
+//                  "hulls": [{"node", "vertices", "volume_m3"}, ..]},   // only when export lists collision
+//    "input_hash"}
 //
 // Everything in it is a function of the bake's inputs (no times, no host).
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +28,20 @@
 namespace rockbake {
 
 inline constexpr const char* kAssetFile = "asset.json";
+
+// One convex hull of collision.glb (docs/collision.md).
+struct AssetHull {
+  std::string node;  // its node's (and mesh's) name
+  std::size_t vertices = 0;
+  double volume = 0.0;  // world units³
+};
+
+// collision.glb: its hulls in the file's node order.
+struct AssetCollision {
+  std::string file;    // relative to the asset folder
+  std::string naming;  // the preset's collision.naming: "unreal" or "godot"
+  std::vector<AssetHull> hulls;
+};
 
 struct AssetLod {
   std::string file;  // relative to the asset folder
@@ -36,6 +55,7 @@ struct AssetDescription {
   std::vector<AssetLod> lods;  // level 0 first
   std::string preview;         // relative path, empty: none
   std::string input_hash;
+  std::optional<AssetCollision> collision;  // none: export does not list collision
 };
 
 // Area-weighted mean of the vertex colours (linear RGB) over both surfaces.

@@ -16,6 +16,7 @@
 #include "export/vdb_file.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/asset_json.h"
+#include "pipeline/bake_collision.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/manifest.h"
@@ -254,8 +255,21 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes) {
   bake.clock.lap();
 }
 
+// collision.glb when export lists collision (pipeline/bake_collision.h): with meshes only, whose pivot and names
+// it shares.
+std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered,
+                                      const std::optional<MeshStageResult>& meshes) {
+  if (!meshes || !exportsFormat(bake.preset, "collision")) return std::nullopt;
+  bake.checkCancel();
+  bake.progress(0.8, "collision");
+  AssetCollision collision = bakeCollision(weathered.rock, bake.preset.collision, meshes->pivot, bake.dir());
+  bake.timings.collision = bake.clock.lap();
+  return collision;
+}
+
 // asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only.
-void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes) {
+void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes,
+              const std::optional<AssetCollision>& collision) {
   if (!meshes) return;
   const Preset& preset = bake.preset;
   AssetDescription asset;
@@ -269,6 +283,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes) {
   const ManifestInputs& inputs = bake.options.manifest;
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
   asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);
+  asset.collision = collision;
   writeAssetJson(asset, bake.dir());
 }
 
@@ -313,8 +328,9 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   Bake bake(preset, options);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
   const std::optional<MeshStageResult> meshes = meshAndExport(bake, weathered);
+  const std::optional<AssetCollision> collision = collide(bake, weathered, meshes);
   render(bake, meshes);
-  describe(bake, meshes);
+  describe(bake, meshes, collision);
   writeStats(bake, weathered);
   writeManifestLast(bake, weathered);
   return commit(bake, weathered);

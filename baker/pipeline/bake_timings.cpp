@@ -18,6 +18,7 @@ nlohmann::ordered_json bakeTimingsJson(const BakeTimings& t) {
     stages["export"] = t.mesh->exports;
   }
   if (t.write_vdb) stages["write_vdb"] = *t.write_vdb;
+  if (t.collision) stages["collision"] = *t.collision;
   if (t.render) stages["render"] = *t.render;
   stages["total"] = t.total;
   return stages;

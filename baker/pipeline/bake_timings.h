@@ -1,7 +1,7 @@
 // How long each phase of a bake took, in seconds (wall clock): stats.json's
 // "stages" and the manifest's "timings.stages" (README, "What the bake
 // produces"). bakeTimingsJson writes them in one order; a phase that did not
-// run (no meshes, no render, no rock.vdb) has no entry. A new phase adds a
+// run (no meshes, no render, no rock.vdb, no collision.glb) has no entry. A new phase adds a
 // field here and a line there.
 #pragma once
 
@@ -28,13 +28,15 @@ struct BakeTimings {
   double simulate_rockfall = 0.0;
   std::optional<MeshTimings> mesh;
   std::optional<double> write_vdb;
-  std::optional<double> render;  // POV-Ray and its previews
-  double total = 0.0;            // load and every phase
+  std::optional<double> collision;  // the hulls and collision.glb
+  std::optional<double> render;     // POV-Ray and its previews
+  double total = 0.0;               // load and every phase
 };
 
 // {"load", "shape", "simulate", "simulate_curvature", "simulate_colluvium",
 //  "simulate_rockfall", "mesh_extract", "mesh_subdivide", "mesh_attributes",
-//  "mesh_simplify", "export", "write_vdb", "render", "total"}, those that ran.
+//  "mesh_simplify", "export", "write_vdb", "collision", "render", "total"},
+// those that ran.
 nlohmann::ordered_json bakeTimingsJson(const BakeTimings& timings);
 
 }  // namespace rockbake

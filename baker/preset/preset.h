@@ -108,7 +108,6 @@ struct RindParams {
   double factor = 2.0;  // durability multiplier in the rind, > 0
 };
 
-
 // ---- bubbles (docs/model.md §3) ----
 struct BubbleSpec {
   enum class Kind { Sphere, Ellipsoid, Box, Collection };
@@ -211,11 +210,11 @@ struct RenderParams {
   int turntable_frames = 0;  // 0: no turntable
 };
 
-// Collision hulls decomposed from the voxels (docs/collision.md). Not read
-// from presets yet: the collision stage takes it as given.
+// Collision hulls decomposed from the voxels (docs/collision.md): the preset's
+// `collision:` block, written to collision.glb when `export:` lists `collision`.
 enum class HullNaming {
-  Unreal,  // UCX_rock_00, UCX_rock_01, …
-  Godot,   // rock_00-convcolonly, …
+  Unreal,  // UCX_rock_lod0_00, UCX_rock_lod0_01, …: paired with rock.glb's mesh rock_lod0
+  Godot,   // rock_lod0_00-convcolonly, …
 };
 struct CollisionParams {
   static constexpr int kMaxHulls = 100;     // two-digit node names
@@ -252,9 +251,10 @@ struct Preset : SimParams {
   std::string name;  // [a-z0-9_-]+
   MeshParams mesh;
   BakeParams bake;
-  std::vector<std::string> exports{"ply", "glb", "vdb"};  // "obj" on request
-  std::vector<std::string> tags;                          // asset.json's tags, each [a-z0-9_-]+
-  double units_per_meter = 1.0;                           // world units per metre (asset.json's physical size), > 0
+  CollisionParams collision;
+  std::vector<std::string> exports{"ply", "glb", "vdb", "collision"};  // "obj" on request
+  std::vector<std::string> tags;                                       // asset.json's tags, each [a-z0-9_-]+
+  double units_per_meter = 1.0;  // world units per metre (asset.json's physical size), > 0
   RenderParams render;
 
   // Where each key the file gave was written, by key path ("shape.image.path"),

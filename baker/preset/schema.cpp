@@ -61,6 +61,11 @@ std::span<const EnumName<BubbleSpec::Kind>> enumNames() {
   return names;
 }
 template <>
+std::span<const EnumName<HullNaming>> enumNames() {
+  static constexpr EnumName<HullNaming> names[] = {{HullNaming::Unreal, "unreal"}, {HullNaming::Godot, "godot"}};
+  return names;
+}
+template <>
 std::span<const EnumName<ResponseParams::Kind>> enumNames() {
   using K = ResponseParams::Kind;
   static constexpr EnumName<K> names[] = {{K::Power, "power"}, {K::Threshold, "threshold"}, {K::Curve, "curve"}};
@@ -556,6 +561,25 @@ const MapSpec<RenderParams>& renderSpec() {
   return spec;
 }
 
+const MapSpec<CollisionParams>& collisionSpec() {
+  static const Keys<CollisionParams> k;
+  static const MapSpec<CollisionParams> spec{
+      {
+          k("max_hulls", &CollisionParams::max_hulls, integer<int>(1, CollisionParams::kMaxHulls),
+            "convex hulls per material at most"),
+          k("max_vertices", &CollisionParams::max_vertices,
+            integer<int>(CollisionParams::kMinVertices, CollisionParams::kMaxVertices),
+            "vertices per hull at most (255: PhysX's limit, Unreal's and Unity's)"),
+          k("naming", &CollisionParams::naming, choice<HullNaming>(),
+            "node names in `collision.glb`: Unreal's `UCX_` or Godot's `-convcolonly`"),
+          k("colluvium", &CollisionParams::colluvium, boolean(), "also hull the colluvium, in hulls of its own"),
+      },
+      {},
+      "Written to `collision.glb` when `export` lists `collision` and the bake has meshes "
+      "([collision.md](collision.md))."};
+  return spec;
+}
+
 // ---- the preset ----
 
 constexpr auto stopTime = [](auto& p) -> auto& {
@@ -600,7 +624,9 @@ const MapSpec<Preset>& presetSpec() {
           k("mesh", &Preset::mesh, mapValue<meshSpec>(), "extraction, subdivision, detail, LODs"),
           k("bake", &Preset::bake, mapValue<bakeSpec>(), "palettes: the colours baked into the meshes"),
           k("export", &Preset::exports, exportFormats(),
-            "the files a bake writes ([formats.md](formats.md)); LODs come with `glb`"),
+            "the files a bake writes ([formats.md](formats.md)); LODs come with `glb`, `collision.glb` with "
+            "`collision`"),
+          k("collision", &Preset::collision, mapValue<collisionSpec>(), "convex hulls a game engine collides with"),
           k("tags", &Preset::tags, tagList(), "`asset.json`'s tags (a tag given twice is kept once)"),
           k("units_per_meter", &Preset::units_per_meter, numberIn(0.0, 1e6, true),
             "world units per metre: `asset.json`'s physical size"),

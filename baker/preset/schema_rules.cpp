@@ -162,8 +162,8 @@ Value<SrgbColor> color() {
 }
 
 Value<std::vector<std::string>> exportFormats() {
-  static const std::vector<std::string> kFormats = {"ply", "obj", "glb", "vdb"};
-  return custom<std::vector<std::string>>("list", "each `ply`, `obj`, `glb` or `vdb`, none twice",
+  static const std::vector<std::string> kFormats = {"ply", "obj", "glb", "vdb", "collision"};
+  return custom<std::vector<std::string>>("list", "each `ply`, `obj`, `glb`, `vdb` or `collision`, none twice",
                                           [](const Field& e, std::vector<std::string>& exports, const ReadContext&) {
                                             exports.clear();
                                             for (std::size_t i = 0; i < e.size(); ++i) {

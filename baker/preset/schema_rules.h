@@ -29,7 +29,7 @@ Value<std::vector<std::array<double, 2>>> altitudePoints();  // [[altitude, dura
 Value<std::vector<std::array<double, 2>>> responseCurve();   // [[x, y], ...] from x = 0 to x = 1
 Value<std::vector<double>> lodList();                        // ratios or triangle counts, decreasing
 Value<SrgbColor> color();                                    // "#rrggbb" or [r, g, b]
-Value<std::vector<std::string>> exportFormats();             // ply, obj, glb, vdb, each once
+Value<std::vector<std::string>> exportFormats();             // ply, obj, glb, vdb, collision, each once
 Value<std::vector<std::string>> tagList();                   // asset names; repeats dropped
 Value<std::string> templateName();                           // a template in render_templates/, by name
 

@@ -3,40 +3,29 @@
 // the engine, positions and indices only, each closed, convex and outward.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
-#include <tiny_gltf.h>
-
+#include "collision/glb_reading.h"
 #include "collision/hull_checks.h"
 #include "export/collision_glb.h"
+#include "export/glb_file.h"
 #include "mesh/extract_surfaces.h"
 
 namespace rockbake {
 namespace {
 
-tinygltf::Model readGlb(const std::filesystem::path& file) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, file.string())) << err;
-  return model;
-}
+using test::accessorValues;
+using test::readGlb;
 
-template <typename T>
-std::vector<T> accessorValues(const tinygltf::Model& model, int index, int components) {
-  const tinygltf::Accessor& a = model.accessors[std::size_t(index)];
-  const tinygltf::BufferView& v = model.bufferViews[std::size_t(a.bufferView)];
-  std::vector<T> values(a.count * std::size_t(components));
-  std::memcpy(values.data(), model.buffers[std::size_t(v.buffer)].data.data() + v.byteOffset + a.byteOffset,
-              values.size() * sizeof(T));
-  return values;
-}
-
+// Built on the surface's mesh in rock.glb, which Unreal pairs them with: the
+// name between UCX_ and the last underscore (docs/collision.md).
 TEST(CollisionGlb, NodeNamesForEachEngine) {
-  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "rock", 0), "UCX_rock_00");
-  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "colluvium", 12), "UCX_colluvium_12");
-  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "rock", 3), "rock_03-convcolonly");
-  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "colluvium", 0), "colluvium_00-convcolonly");
+  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "rock", 0), "UCX_rock_lod0_00");
+  EXPECT_EQ(collisionNodeName(HullNaming::Unreal, "colluvium", 12), "UCX_colluvium_lod0_12");
+  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "rock", 3), "rock_lod0_03-convcolonly");
+  EXPECT_EQ(collisionNodeName(HullNaming::Godot, "colluvium", 0), "colluvium_lod0_00-convcolonly");
+  for (const char* surface : {"rock", "colluvium"}) {
+    const std::string name = collisionNodeName(HullNaming::Unreal, surface, 7);
+    EXPECT_EQ(name.substr(4, name.rfind('_') - 4), glbMeshName(surface, 0)) << name;
+  }
 }
 
 TEST(CollisionGlb, HullsInTheAssetFrame) {

@@ -24,10 +24,7 @@
 namespace rockbake {
 namespace {
 
-using test::cross;
-using test::dot;
 using test::expectClosedConvexOutward;
-using test::sub;
 using test::weatheredGoblin;
 
 // An all-air grid on the ground, h = 0.25, with `solid` deciding which cells are rock.
@@ -141,7 +138,9 @@ TEST(CollisionHulls, WeatheredRockAndColluvium) {
       const ConvexHull& h = (*list)[i];
       EXPECT_LE(h.positions.size(), std::size_t(params.max_vertices)) << what;
       expectClosedConvexOutward(h, 1e-9 * rock.layout.h, what + " hull " + std::to_string(i));
-      if (i > 0) EXPECT_GE((*list)[i - 1].volume, h.volume) << "largest first";
+      if (i > 0) {
+        EXPECT_GE((*list)[i - 1].volume, h.volume) << "largest first";
+      }
     }
     const HullCoverage c = measureCoverage(rock, material, *list);
     EXPECT_GE(c.coverage(), 0.98) << what;

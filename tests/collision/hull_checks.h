@@ -27,16 +27,6 @@ inline const VoxelRock& weatheredGoblin() {
   return rock;
 }
 
-inline Vec3d sub(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 // Every edge used once each way; every vertex on the inner side of every
 // face (so the hull is convex and its faces point out); the volume its
 // triangles enclose is positive and the one it reports.

@@ -92,8 +92,12 @@ TEST(ReduceHull, CapsTheVerticesAndKeepsTheHullInside) {
       for (const Vec3d& v : ball.vertices)
         ASSERT_LE(p.normal[0] * v[0] + p.normal[1] * v[1] + p.normal[2] * v[2], p.offset + 1e-9) << cap;
     // More vertices, less air.
-    if (cap == 8) EXPECT_NEAR(polytope.volume, 12.0 * 12.0 * 12.0, 1e-9);  // the bounding box
-    if (cap == 64) EXPECT_LT(polytope.volume, 1.25 * ball.volume);
+    if (cap == 8) {
+      EXPECT_NEAR(polytope.volume, 12.0 * 12.0 * 12.0, 1e-9);  // the bounding box
+    }
+    if (cap == 64) {
+      EXPECT_LT(polytope.volume, 1.25 * ball.volume);
+    }
     std::printf("cap %d: %zu vertices, volume %.1f (hull %.1f)\n", cap, polytope.vertices.size(), polytope.volume,
                 ball.volume);
   }

@@ -112,6 +112,25 @@ TEST(Cli, RockVdbIsByteIdenticalAcrossThreadCountsAndRuns) {
   }
 }
 
+// collision.glb likewise (docs/collision.md): the parts, their merging and Qhull's hulls are the same bytes at
+// one thread and two. hoodoo-cap, with its colluvium hulled too (both materials, a fallen cap).
+TEST(Cli, CollisionGlbIsByteIdenticalAcrossThreadCountsAndRuns) {
+  TempDir dir;
+  std::vector<std::string> outputs;
+  for (const auto& [name, threads] :
+       std::vector<std::pair<std::string, std::string>>{{"one", "1"}, {"two", "2"}, {"again", "2"}}) {
+    const auto result = runRockbake({"bake", presetPath("hoodoo-cap.yaml"), "--resolution", "40", "--no-render",
+                                     "--set", "export=[collision]", "--set", "collision.colluvium=true", "-o",
+                                     (dir.path() / name).string(), "--threads", threads});
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+    outputs.push_back(readBytes(dir.path() / name / "hoodoo-cap" / "collision.glb"));
+  }
+  ASSERT_GT(outputs[0].size(), 1000u);
+  EXPECT_NE(outputs[0].find("UCX_colluvium_lod0_00"), std::string::npos) << "the colluvium should be hulled";
+  EXPECT_TRUE(outputs[0] == outputs[1]) << "1 vs 2 threads differ";
+  EXPECT_TRUE(outputs[1] == outputs[2]) << "two runs differ";
+}
+
 // ROCKBAKE_ALPHA_PATH forces how bubble counts are made; the counts, and so
 // the files, are the same on every path and at any thread count. goblin at 96
 // has an ellipsoid whose rows are cut into pieces.

@@ -49,7 +49,8 @@ time: 3.0
 until: {rock_volume_fraction: 0.5}
 mesh: {smoothing: 1.0, subdivision: 2, lods: [0.5, 0.25]}
 bake: {palette: debug}
-export: [ply, glb]
+export: [ply, glb, collision]
+collision: {max_hulls: 8, max_vertices: 32, naming: godot, colluvium: true}
 render: {template: studio, width: 640, height: 480, turntable: {frames: 8}}
 )";
 
@@ -89,7 +90,11 @@ TEST(Preset, ReadsEveryKeyOfTheSchema) {
   EXPECT_EQ(*p.stop.rock_volume_fraction, 0.5);
   EXPECT_EQ(p.mesh.lods.size(), 2u);
   EXPECT_EQ(p.bake.palette, Palette::Debug);
-  EXPECT_EQ(p.exports, (std::vector<std::string>{"ply", "glb"}));
+  EXPECT_EQ(p.exports, (std::vector<std::string>{"ply", "glb", "collision"}));
+  EXPECT_EQ(p.collision.max_hulls, 8);
+  EXPECT_EQ(p.collision.max_vertices, 32);
+  EXPECT_EQ(p.collision.naming, HullNaming::Godot);
+  EXPECT_TRUE(p.collision.colluvium);
   EXPECT_EQ(p.render.turntable_frames, 8);
 }
 
@@ -104,6 +109,33 @@ TEST(Preset, FillsDefaults) {
   EXPECT_EQ(p.rockfall.mode, RockfallMode::Drop);
   EXPECT_EQ(*p.stop.cycles, 5);
   EXPECT_FALSE(p.stop.time.has_value());
+  EXPECT_EQ(p.exports, (std::vector<std::string>{"ply", "glb", "vdb", "collision"}));
+  EXPECT_EQ(p.collision.max_hulls, 16);
+  EXPECT_EQ(p.collision.max_vertices, 64);
+  EXPECT_EQ(p.collision.naming, HullNaming::Unreal);
+  EXPECT_FALSE(p.collision.colluvium);
+}
+
+// docs/collision.md, Parameters: each key's range, at its place in the file.
+TEST(Preset, CollisionKeysOutOfRangeNameTheirPlace) {
+  const std::string base = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ncycles: 5\n";
+  const std::string hulls = errorOf(base + "collision:\n  max_hulls: 0\n");
+  EXPECT_NE(hulls.find("dir/p.yaml:6:14: collision.max_hulls: must be a whole number from 1 to 100"), std::string::npos)
+      << hulls;
+  const std::string vertices = errorOf(base + "collision: {max_vertices: 256}\n");
+  EXPECT_NE(vertices.find("dir/p.yaml:5:27: collision.max_vertices: must be a whole number from 8 to 255"),
+            std::string::npos)
+      << vertices;
+  const std::string naming = errorOf(base + "collision: {naming: ue5}\n");
+  EXPECT_NE(naming.find("dir/p.yaml:5:21: collision.naming: 'ue5' is not one of: unreal, godot"), std::string::npos)
+      << naming;
+  const std::string format = errorOf(base + "export: [glb, colision]\n");
+  EXPECT_NE(format.find("dir/p.yaml:5:15: export.1: 'colision' is not one of: ply, obj, glb, vdb, collision"),
+            std::string::npos)
+      << format;
+  const std::string unknown = errorOf(base + "collision: {max_hull: 4}\n");
+  EXPECT_NE(unknown.find("collision.max_hull: unknown key 'max_hull'; did you mean 'max_hulls'?"), std::string::npos)
+      << unknown;
 }
 
 TEST(Preset, ErrorsNameFileLineColumnAndKeyPath) {
@@ -431,7 +463,7 @@ TEST(Preset, ResolvedJsonHasEveryKeyWithDefaults) {
   const nlohmann::json j =
       presetToJson(parsePreset("rockbake: 1\nname: plain\nshape: {sphere: {radius: 1}}\ncycles: 5\n", "p.yaml"));
   for (const char* key : {"rockbake", "name", "seed", "grid", "shape", "durability", "bubbles", "response", "rockfall",
-                          "colluvium", "cycles", "mesh", "bake", "export", "render"})
+                          "colluvium", "cycles", "mesh", "bake", "export", "collision", "render"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_FALSE(j.contains("time"));
   EXPECT_FALSE(j.contains("until"));
@@ -440,7 +472,9 @@ TEST(Preset, ResolvedJsonHasEveryKeyWithDefaults) {
   EXPECT_EQ(j["bubbles"][0]["bubble"]["sphere"]["radius"], 6.0 / 16.0);
   EXPECT_EQ(j["response"]["power"], 1.0);
   EXPECT_TRUE(j["shape"]["center"].is_null());
-  EXPECT_EQ(j["export"], nlohmann::json::parse(R"(["ply", "glb", "vdb"])"));
+  EXPECT_EQ(j["export"], nlohmann::json::parse(R"(["ply", "glb", "vdb", "collision"])"));
+  EXPECT_EQ(j["collision"],
+            nlohmann::json::parse(R"({"max_hulls": 16, "max_vertices": 64, "naming": "unreal", "colluvium": false})"));
   // Deterministic, and it loads back to itself.
   EXPECT_EQ(presetToJson(parsePreset(j.dump(), "p.yaml")).dump(), j.dump());
 }

@@ -101,6 +101,7 @@ TEST(Schema, EnumNamesAreReadAndWrittenByOneTable) {
   const std::string head = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n";
   expectNamesRoundTrip<Palette>("bake.palette", head);
   expectNamesRoundTrip<RockfallMode>("rockfall.mode", head);
+  expectNamesRoundTrip<HullNaming>("collision.naming", head);
   EXPECT_EQ(schema::namesOf<ImageMode>(), (std::vector<std::string>{"extrude", "revolve"}));
   EXPECT_EQ(schema::namesOf<BubbleSpec::Kind>(),
             (std::vector<std::string>{"sphere", "ellipsoid", "box", "collection"}));

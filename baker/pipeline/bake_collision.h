@@ -1,0 +1,25 @@
+// The collision phase of the recipe (docs/collision.md): the final rock's convex
+// hulls (collision/collision_hulls.h, with the preset's `collision:` block), written
+// to <asset_dir>/collision.glb (export/collision_glb.h) in the asset's frame: about
+// `pivot` (the meshes' footprintPivot), y up, world units, like rock.glb, and named
+// after rock.glb's meshes (rock_lod0, colluvium_lod0) so that an engine pairs them.
+// Gives what asset.json says of the file. The file is written atomically; throws
+// std::runtime_error on failure (Qhull, the write) and std::invalid_argument for
+// parameters outside CollisionParams' ranges (a loaded preset has none).
+#pragma once
+
+#include <array>
+#include <filesystem>
+
+#include "core/voxel_rock.h"
+#include "pipeline/asset_json.h"
+#include "preset/preset.h"
+
+namespace rockbake {
+
+inline constexpr const char* kCollisionFile = "collision.glb";
+
+AssetCollision bakeCollision(const VoxelRock& rock, const CollisionParams& params, const std::array<double, 3>& pivot,
+                             const std::filesystem::path& asset_dir);
+
+}  // namespace rockbake
