@@ -26,7 +26,7 @@ struct EnumName {
   const char* name;
 };
 // Every value of E with its name, in the reference's order. Defined for Palette,
-// RockfallMode, ImageMode, BubbleSpec::Kind and ResponseParams::Kind.
+// RockfallMode, ImageMode, BubbleSpec::Kind, ResponseParams::Kind, TextureMap and LodMapSize.
 template <class E>
 std::span<const EnumName<E>> enumNames();
 

@@ -28,7 +28,7 @@ double radicalInverse(std::uint32_t i) {
 }  // namespace
 
 std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const RaySource& source,
-                                                  const TextureParams& params) {
+                                                  const TextureParams& params, std::uint64_t seed) {
   checkTextureParams(params);
   const double pi = 3.14159265358979323846;
   const int count = params.ao_rays;
@@ -52,7 +52,7 @@ std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const R
       std::uint32_t bits[3];
       std::memcpy(bits, p.data(), sizeof bits);
       const std::uint64_t h =
-          counterHash(params.seed, purpose, std::uint64_t(s), mix64(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
+          counterHash(seed, purpose, std::uint64_t(s), mix64(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
       const double shift1 = unitInterval(h), shift2 = unitInterval(mix64(h));
       int hits = 0;
       std::array<float, 3> packet[RaySource::kPacket];

@@ -12,7 +12,8 @@ double inverse(double scale) {
 }
 }  // namespace
 
-RockLook::RockLook(std::uint64_t seed, double radius, double voxel_size, std::array<float, 2> durability_range)
+RockLook::RockLook(std::uint64_t seed, double radius, double voxel_size, std::array<float, 2> durability_range,
+                   bool varied)
     : mottle_(counterHash(seed, purposeId("texture-mottle"), 0, 0)),
       variation_(counterHash(seed, purposeId("texture-variation"), 0, 0)),
       grain_(counterHash(seed, purposeId("texture-grain"), 0, 0)),
@@ -21,10 +22,12 @@ RockLook::RockLook(std::uint64_t seed, double radius, double voxel_size, std::ar
       variation_scale_(inverse(voxel_size)),
       grain_scale_(inverse(0.02 * radius)),
       colluvium_scale_(inverse(0.015 * radius)),
+      varied_(varied),
       durability_min_(durability_range[0]),
       durability_span_(durability_range[1] - durability_range[0]) {}
 
 float RockLook::colourFactor(const std::array<double, 3>& p, float cover) const {
+  if (!varied_) return 1.0f;
   const auto at = [&](const PerlinNoise& n, double s) { return s > 0 ? n(p[0] * s, p[1] * s, p[2] * s) : 0.0; };
   const double variation = 0.06 * at(variation_, variation_scale_);
   const double rock = 0.10 * mottle_.fractal(p[0] * mottle_scale_, p[1] * mottle_scale_, p[2] * mottle_scale_, 2) +
@@ -40,7 +43,8 @@ float RockLook::normalisedDurability(float durability) const {
 }
 
 float RockLook::roughness(const std::array<double, 3>& p, float durability, float cover) const {
-  const double grain = grain_scale_ > 0 ? grain_(p[0] * grain_scale_, p[1] * grain_scale_, p[2] * grain_scale_) : 0.0;
+  const double grain =
+      varied_ && grain_scale_ > 0 ? grain_(p[0] * grain_scale_, p[1] * grain_scale_, p[2] * grain_scale_) : 0.0;
   const double rock = 0.9 - 0.15 * normalisedDurability(durability) + 0.04 * grain;
   const double c = std::clamp(double(cover), 0.0, 1.0);
   return float(std::clamp((1.0 - c) * rock + c * 0.95, 0.0, 1.0));

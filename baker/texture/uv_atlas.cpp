@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
@@ -103,8 +105,10 @@ SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const Fla
 
 }  // namespace
 
-UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
-  checkTextureParams(params);
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
+  if (size < 1 || size > 8192 || padding < 0 || padding > 64)
+    throw std::invalid_argument("buildUvAtlas: a " + std::to_string(size) + "² map with " + std::to_string(padding) +
+                                "-texel gutters is outside 1 … 8192 texels and 0 … 64 texels");
   const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
   std::array<std::vector<FlatChart>, 2> flat;
   for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
@@ -114,7 +118,7 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
     for (auto& c : charts) packed.push_back({c.uv.uv, c.uv.corners});
   UvAtlas atlas;
   atlas.charts = packed.size();
-  atlas.texels_per_unit = packCharts(packed, params.size, params.padding);
+  atlas.texels_per_unit = packCharts(packed, size, padding);
   std::vector<std::vector<std::array<double, 2>>> uv;
   for (PackChart& c : packed) uv.push_back(std::move(c.uv));
 
