@@ -6,6 +6,13 @@
 //   BM_MeshExport:     palette + PLY, OBJ + MTL, GLB and two LODs (0.5, 0.25), to a temp folder
 //   BM_MeshStage:      all of the above (bakeMeshes); the counter `share` is its
 //                      share of the whole bake (simulation, VDB write, mesh stage)
+//
+// The mesh kernel (docs/mesh-kernel.md) on the refined rock (subdivision 2):
+//   BM_EdgeTable:       the edge table of its triangles
+//   BM_CheckMesh:       checkMesh (edge table, fold-overs, pieces, volume)
+//   BM_RepairFoldOvers: the fold-over repair on a clean surface: the cost of looking
+//   BM_MeshLods:        simplifyLods(0.5, 0.25) of both refined surfaces: every
+//                       pass, pinch split and repair, no files
 #include <benchmark/benchmark.h>
 
 #include <unistd.h>
@@ -16,6 +23,7 @@
 #include <filesystem>
 
 #include "core/colour.h"
+#include "core/edge_table.h"
 #include "core/mesh_checks.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
@@ -23,6 +31,8 @@
 #include "export/vdb_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
+#include "mesh/fold_over_repair.h"
+#include "mesh/mesh_defects.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "pipeline/bake_meshes.h"
@@ -84,6 +94,17 @@ AssetMeshes sampled() {
   const Asset& a = asset();
   const std::vector<float> exposure = exposureField(a.rock, a.preset);
   return sampleAttributes(extractSurfaces(a.rock, {a.preset.mesh.smoothing}), {&a.rock, &exposure});
+}
+
+// Both surfaces after attributes and Catmull-Clark level 2, as the LODs start from.
+const AssetMeshes& refined() {
+  static const AssetMeshes m = [] {
+    AssetMeshes r = sampled();
+    r.rock = subdivideSurface(r.rock, {2});
+    r.colluvium = subdivideSurface(r.colluvium, {2});
+    return applyPalette(std::move(r), paletteParams(asset().rock, asset().preset.bake));
+  }();
+  return m;
 }
 
 void counters(benchmark::State& state, const AssetMeshes& m) {
@@ -152,11 +173,43 @@ void BM_MeshStage(benchmark::State& state) {
   state.counters["share"] = mesh / (mesh + a.simulate_seconds);
 }
 
+void BM_EdgeTable(benchmark::State& state) {
+  const SurfaceMesh& rock = refined().rock;
+  for (auto _ : state) benchmark::DoNotOptimize(EdgeTable(rock.triangles).openEdgeCount());
+  state.counters["triangles"] = double(rock.triangles.size());
+}
+
+void BM_CheckMesh(benchmark::State& state) {
+  const SurfaceMesh& rock = refined().rock;
+  for (auto _ : state) benchmark::DoNotOptimize(checkMesh(rock));
+  state.counters["triangles"] = double(rock.triangles.size());
+}
+
+void BM_RepairFoldOvers(benchmark::State& state) {
+  for (auto _ : state) {
+    state.PauseTiming();
+    SurfaceMesh rock = refined().rock;
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(repairFoldOvers(rock));
+  }
+}
+
+void BM_MeshLods(benchmark::State& state) {
+  const AssetMeshes& m = refined();
+  std::vector<AssetMeshes> lods;
+  for (auto _ : state) lods = simplifyLods(m, {asset().preset.mesh.lods});
+  state.counters["lod1_triangles"] = double(lods[0].rock.triangles.size() + lods[0].colluvium.triangles.size());
+}
+
 BENCHMARK(BM_MeshExtract)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_MeshAttributes)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_MeshSubdivide)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_MeshExport)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_MeshStage)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_EdgeTable)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_CheckMesh)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_RepairFoldOvers)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_MeshLods)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 }  // namespace rockbake

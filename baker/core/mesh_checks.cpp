@@ -3,54 +3,28 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/edge_table.h"
+#include "core/triangle_geometry.h"
+
 namespace rockbake {
 namespace {
 
-// (min, max, direction) of every edge of the faces.
-template <class Face>
-void countEdges(const std::vector<Face>& faces, std::vector<std::array<std::uint32_t, 3>>& edges) {
-  for (const auto& f : faces)
-    for (std::size_t i = 0; i < f.size(); ++i) {
-      const std::uint32_t a = f[i], b = f[(i + 1) % f.size()];
-      edges.push_back({std::min(a, b), std::max(a, b), a < b ? 0u : 1u});
-    }
-}
-
-// Sorted (a, b, direction) triples → the edges not used once in each direction.
-std::vector<OpenEdge> openEdges(std::vector<std::array<std::uint32_t, 3>> edges) {
-  std::sort(edges.begin(), edges.end());
+std::vector<OpenEdge> openEdges(const EdgeTable& table) {
   std::vector<OpenEdge> open;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    int uses[2] = {0, 0};
-    for (; j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]; ++j) ++uses[edges[j][2]];
-    if (uses[0] != 1 || uses[1] != 1) open.push_back({edges[i][0], edges[i][1], uses[0] + uses[1]});
-    i = j;
-  }
+  open.reserve(table.openEdgeCount());
+  for (const EdgeTable::Edge& e : table.edges())
+    if (!e.paired()) open.push_back({e.a, e.b, int(e.faces())});
   return open;
-}
-
-template <class Point>
-double tetVolume(const Point& p, const Point& q, const Point& r) {
-  return (double(p[0]) * (double(q[1]) * r[2] - double(q[2]) * r[1]) -
-          double(p[1]) * (double(q[0]) * r[2] - double(q[2]) * r[0]) +
-          double(p[2]) * (double(q[0]) * r[1] - double(q[1]) * r[0])) /
-         6.0;
 }
 
 }  // namespace
 
 std::vector<OpenEdge> findOpenEdges(const TriangleMesh& mesh) {
-  std::vector<std::array<std::uint32_t, 3>> edges;
-  countEdges(mesh.triangles, edges);
-  return openEdges(std::move(edges));
+  return openEdges(EdgeTable(mesh.triangles));
 }
 
 std::vector<OpenEdge> findOpenEdges(const SurfaceMesh& mesh) {
-  std::vector<std::array<std::uint32_t, 3>> edges;
-  countEdges(mesh.triangles, edges);
-  countEdges(mesh.quads, edges);
-  return openEdges(std::move(edges));
+  return openEdges(EdgeTable(mesh.triangles, mesh.quads));
 }
 
 double signedVolume(const TriangleMesh& m) {

@@ -1,10 +1,20 @@
 // Meshes as plain data between the inputs, mesh, export and render stages (docs/meshes.md).
 // World units, z up (the simulation's frame). Colours are linear RGB in [0, 1].
+//
+// Per-vertex arrays are listed once, in kVertexArrays below: every operation
+// that adds, drops, reorders or copies vertices (core/vertex_remap.h: remap,
+// compaction, welding, splitting) carries each array listed there, and each
+// must be empty or hold one value per position. Adding a per-vertex array to
+// SurfaceMesh means adding it to kVertexArrays too; the static_assert below
+// the list fails until it is listed there (or, for anything not per vertex,
+// in the assertion itself).
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace rockbake {
@@ -31,6 +41,40 @@ struct SurfaceMesh {
   // the bitangent is cross(normal, xyz) · w, as glTF's TANGENT.
   std::vector<std::array<float, 4>> tangents;
 };
+
+// One per-vertex array of SurfaceMesh: its name (for messages) and its member.
+template <class T>
+struct VertexArray {
+  const char* name;
+  std::vector<T> SurfaceMesh::*member;
+};
+
+// Every per-vertex array of SurfaceMesh, positions first.
+inline constexpr std::tuple kVertexArrays{
+    VertexArray<std::array<float, 3>>{"positions", &SurfaceMesh::positions},
+    VertexArray<std::array<float, 3>>{"normals", &SurfaceMesh::normals},
+    VertexArray<float>{"durability", &SurfaceMesh::durability},
+    VertexArray<float>{"colluvium", &SurfaceMesh::colluvium},
+    VertexArray<float>{"curvature", &SurfaceMesh::curvature},
+    VertexArray<float>{"altitude", &SurfaceMesh::altitude},
+    VertexArray<std::array<float, 3>>{"colors", &SurfaceMesh::colors},
+    VertexArray<std::array<float, 2>>{"uvs", &SurfaceMesh::uvs},
+    VertexArray<std::array<float, 4>>{"tangents", &SurfaceMesh::tangents},
+};
+
+// Calls visit(name, array) for each array in kVertexArrays, in order; `Mesh`
+// is SurfaceMesh or const SurfaceMesh.
+template <class Mesh, class Visit>
+void forEachVertexArray(Mesh& mesh, Visit&& visit) {
+  std::apply([&](const auto&... array) { (visit(array.name, mesh.*(array.member)), ...); }, kVertexArrays);
+}
+
+// SurfaceMesh is its name, its faces and the arrays kVertexArrays lists, and nothing else.
+static_assert(sizeof(SurfaceMesh) ==
+                  sizeof(std::string) + sizeof(SurfaceMesh::triangles) + sizeof(SurfaceMesh::quads) +
+                      std::apply([](const auto&... array) { return (sizeof(SurfaceMesh{}.*(array.member)) + ...); },
+                                 kVertexArrays),
+              "a SurfaceMesh member is missing from kVertexArrays (per-vertex) or from this assertion");
 
 // A triangle soup with shared vertices, double precision: an artist's blockout
 // as read (file units), before it is voxelized.

@@ -1,6 +1,7 @@
 #include "mesh/extract_surfaces.h"
 
 #include "core/mesh_checks.h"
+#include "core/triangle_geometry.h"
 
 #include "core/openvdb_support.h"
 #include "mesh/subdivide.h"
@@ -31,122 +32,140 @@ constexpr float kThinMargin = 0.25f;        // voxels: the same for a sample smo
 constexpr double kOnFieldTolerance = 0.02;  // voxels: |phi| left after projectOntoField's steps that calls for a search
 constexpr double kSearchReach = 2.0;        // voxels: how far along a direction that search looks
 
-SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
-                            openvdb::FloatGrid::Ptr* field) {
-  const GridLayout& g = rock.layout;
-  SurfaceMesh mesh;
-  mesh.name = name;
+// Whether the voxel at index c is of `material`; on the ground, the mirrored
+// layers below z = 0 follow their originals.
+struct MaterialAt {
+  const VoxelRock& rock;
+  Material material;
 
+  bool operator()(const openvdb::Coord& c) const {
+    const GridLayout& g = rock.layout;
+    const int z = c.z() < 0 && g.ground ? -1 - c.z() : c.z();
+    return c.x() >= 0 && c.y() >= 0 && z >= 0 && c.x() < g.nx && c.y() < g.ny && z < g.nz &&
+           (c.z() >= 0 || z < kMirrorLayers) && rock.material[g.index(c.x(), c.y(), z)] == material;
+  }
+};
+
+// The material's voxels, active; null when there are none. On the ground, the
+// lowest layers are mirrored below it, so smoothing sees walls that continue
+// through z = 0 rather than a rounded foot.
+openvdb::BoolGrid::Ptr occupancy(const VoxelRock& rock, Material material) {
+  const GridLayout& g = rock.layout;
   auto mask = openvdb::BoolGrid::create(false);
   mask->setTransform(voxelCenterTransform(g));
-  {
-    auto acc = mask->getAccessor();
-    bool any = false;
-    for (int z = 0; z < g.nz; ++z)
-      for (int y = 0; y < g.ny; ++y)
-        for (int x = 0; x < g.nx; ++x)
-          if (rock.material[g.index(x, y, z)] == material) {
-            acc.setValueOn(openvdb::Coord(x, y, z), true);
-            // On the ground, mirror the lowest layers below it, so smoothing
-            // sees walls that continue through z = 0 rather than a rounded foot.
-            if (g.ground && z < kMirrorLayers) acc.setValueOn(openvdb::Coord(x, y, -1 - z), true);
-            any = true;
-          }
-    if (!any) return mesh;
-  }
+  auto acc = mask->getAccessor();
+  bool any = false;
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (rock.material[g.index(x, y, z)] == material) {
+          acc.setValueOn(openvdb::Coord(x, y, z), true);
+          if (g.ground && z < kMirrorLayers) acc.setValueOn(openvdb::Coord(x, y, -1 - z), true);
+          any = true;
+        }
+  return any ? mask : nullptr;
+}
 
-  // Zero crossing on the faces between occupied and empty voxels; no closing,
-  // no dilation: the surface encloses exactly the voxels before smoothing.
-  openvdb::FloatGrid::Ptr sdf =
-      openvdb::tools::topologyToLevelSet(*mask, params.preview ? kPreviewHalfWidth : kHalfWidth, 0, 0, 0);
+using Crossed = std::vector<std::pair<openvdb::Coord, bool>>;  // (sample, inside)
+
+// Smoothing must not change what the rock is: every sample keeps the side of
+// its voxel (inside where the material is, outside elsewhere), so a one-voxel
+// neck stays connected and a one-voxel gap stays open; the surface still moves
+// freely between the samples. A sample smoothing moved across (a voxel-thin
+// neck, fin or gap that it would erase) is held kThinMargin deep rather than
+// kSideMargin: a feature a tenth of a voxel thick cannot be meshed without
+// folding. Returns those samples.
+Crossed holdSides(openvdb::FloatGrid& sdf, const MaterialAt& material_at) {
+  const GridLayout& g = material_at.rock.layout;
+  const float margin = kSideMargin * float(g.h), thin = kThinMargin * float(g.h);
+  Crossed crossed;
+  const auto keepSide = [&](const openvdb::Coord& c, float v, bool inside, auto&& set) {
+    // Colluvium's voxel-thin parts (a lone voxel, a one-voxel veneer on a
+    // face) are left to the smoothing: held, they stand as plates and slits.
+    const bool moved_across = inside ? v > 0 : v < 0;
+    if (moved_across && material_at.material != Material::Rock) return;
+    if (inside && v > -margin) set(moved_across ? -thin : -margin);
+    if (!inside && v < margin) set(moved_across ? thin : margin);
+    if (moved_across) crossed.push_back({c, inside});
+  };
+  for (auto it = sdf.tree().beginValueOn(); it; ++it)
+    keepSide(it.getCoord(), *it, material_at(it.getCoord()), [&](float v) { it.setValue(v); });
+  // The filter's renormalisation can drop such a feature from the band
+  // altogether (its voxels left as inactive background of the wrong sign).
+  auto acc = sdf.getAccessor();
+  for (int z = g.ground ? -kMirrorLayers : 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const openvdb::Coord c(x, y, z);
+        if (acc.isValueOn(c)) continue;
+        keepSide(c, acc.getValue(c), material_at(c), [&](float v) { acc.setValueOn(c, v); });
+      }
+  return crossed;
+}
+
+// Held samples sit next to samples of the other side up to the band's width
+// away: restore the distance bound |phi(a) - phi(b)| <= |a - b| around them,
+// so the crossing lies about kThinMargin from the sample, not a sliver
+// against it. Order-free (a min, or a max, over the held samples).
+void restoreDistanceBound(openvdb::FloatGrid& sdf, const Crossed& crossed, const MaterialAt& material_at, int reach) {
+  const double h = material_at.rock.layout.h;
+  const float thin = kThinMargin * float(h);
+  auto acc = sdf.getAccessor();
+  for (const auto& [c, inside] : crossed)
+    for (int dz = -reach; dz <= reach; ++dz)
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const openvdb::Coord n = c.offsetBy(dx, dy, dz);
+          if (material_at(n) == inside) continue;
+          const float d = float(std::sqrt(double(dx * dx + dy * dy + dz * dz)) * h);
+          const float v = acc.getValue(n);
+          const float bound = inside ? -thin + d : thin - d;
+          if (inside ? v > bound : v < bound) acc.setValueOn(n, bound);
+        }
+}
+
+// `params.smoothing` passes of a width-1 Gaussian, every sample kept on its side.
+void smoothKeepingSides(openvdb::FloatGrid& sdf, const MaterialAt& material_at, const ExtractParams& params) {
   const int passes = int(std::lround(std::clamp(params.smoothing, 0.0, 4.0)));
-  if (passes > 0) {
-    openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*sdf);
-    if (params.preview) {
-      filter.setNormCount(1);
-      filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
-    }
-    for (int i = 0; i < passes; ++i) filter.gaussian(1);
-    // Smoothing must not change what the rock is: every sample keeps the side
-    // of its voxel (inside where the material is, outside elsewhere), so a
-    // one-voxel neck stays connected and a one-voxel gap stays open; the
-    // surface still moves freely between the samples.
-    const auto materialAt = [&](const openvdb::Coord& c) {
-      const int z = c.z() < 0 && g.ground ? -1 - c.z() : c.z();  // mirrored layers follow their originals
-      return c.x() >= 0 && c.y() >= 0 && z >= 0 && c.x() < g.nx && c.y() < g.ny && z < g.nz &&
-             (c.z() >= 0 || z < kMirrorLayers) && rock.material[g.index(c.x(), c.y(), z)] == material;
-    };
-    const float margin = kSideMargin * float(g.h), thin = kThinMargin * float(g.h);
-    // A sample smoothing moved across (a voxel-thin neck, fin or gap that it
-    // would erase) is held kThinMargin deep rather than kSideMargin: a feature
-    // a tenth of a voxel thick cannot be meshed without folding.
-    std::vector<std::pair<openvdb::Coord, bool>> crossed;  // (sample, inside)
-    const auto keepSide = [&](const openvdb::Coord& c, float v, bool inside, auto&& set) {
-      // Colluvium's voxel-thin parts (a lone voxel, a one-voxel veneer on a
-      // face) are left to the smoothing: held, they stand as plates and slits.
-      const bool moved_across = inside ? v > 0 : v < 0;
-      if (moved_across && material != Material::Rock) return;
-      if (inside && v > -margin) set(moved_across ? -thin : -margin);
-      if (!inside && v < margin) set(moved_across ? thin : margin);
-      if (moved_across) crossed.push_back({c, inside});
-    };
-    for (auto it = sdf->tree().beginValueOn(); it; ++it)
-      keepSide(it.getCoord(), *it, materialAt(it.getCoord()), [&](float v) { it.setValue(v); });
-    // The filter's renormalisation can drop such a feature from the band
-    // altogether (its voxels left as inactive background of the wrong sign).
-    auto acc = sdf->getAccessor();
-    const int z_low = g.ground ? -kMirrorLayers : 0;
-    for (int z = z_low; z < g.nz; ++z)
-      for (int y = 0; y < g.ny; ++y)
-        for (int x = 0; x < g.nx; ++x) {
-          const openvdb::Coord c(x, y, z);
-          if (acc.isValueOn(c)) continue;
-          keepSide(c, acc.getValue(c), materialAt(c), [&](float v) { acc.setValueOn(c, v); });
-        }
-    // Held samples sit next to samples of the other side up to the band's width
-    // away: restore the distance bound |phi(a) - phi(b)| <= |a - b| around them,
-    // so the crossing lies about kThinMargin from the sample, not a sliver
-    // against it. Order-free (a min, or a max, over the held samples).
-    const int reach = params.preview ? kPreviewHalfWidth : kHalfWidth;
-    for (const auto& [c, inside] : crossed)
-      for (int dz = -reach; dz <= reach; ++dz)
-        for (int dy = -reach; dy <= reach; ++dy)
-          for (int dx = -reach; dx <= reach; ++dx) {
-            const openvdb::Coord n = c.offsetBy(dx, dy, dz);
-            if (materialAt(n) == inside) continue;
-            const float d = float(std::sqrt(double(dx * dx + dy * dy + dz * dz)) * g.h);
-            const float v = acc.getValue(n);
-            const float bound = inside ? -thin + d : thin - d;
-            if (inside ? v > bound : v < bound) acc.setValueOn(n, bound);
-          }
+  if (passes == 0) return;
+  openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(sdf);
+  if (params.preview) {
+    filter.setNormCount(1);
+    filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
   }
-  if (g.ground) {
-    // Intersect with the half-space z >= 0: phi = max(phi, -z). Below the
-    // ground every sample turns outside; the two layers around z = 0 are
-    // written explicitly (interior tiles included) so the cap's crossings on
-    // vertical edges fall exactly on z = 0.
-    const float h = float(g.h);
-    const auto below = [&](int k) { return -(float(g.origin[2]) + (float(k) + 0.5f) * h); };
-    for (auto it = sdf->tree().beginValueOn(); it; ++it)
-      if (it.getCoord().z() < -1) it.setValue(std::max(*it, below(it.getCoord().z())));
-    auto acc = sdf->getAccessor();
-    for (int k : {-1, 0})
-      for (int y = -1; y <= g.ny; ++y)
-        for (int x = -1; x <= g.nx; ++x) {
-          const openvdb::Coord c(x, y, k);
-          const float v = acc.getValue(c);
-          const float clipped = std::max(v, below(k));
-          if (clipped != v || acc.isValueOn(c)) acc.setValueOn(c, clipped);
-        }
-  }
+  for (int i = 0; i < passes; ++i) filter.gaussian(1);
+  const Crossed crossed = holdSides(sdf, material_at);
+  restoreDistanceBound(sdf, crossed, material_at, params.preview ? kPreviewHalfWidth : kHalfWidth);
+}
 
-  if (field) *field = sdf;
+// Intersects the field with the half-space z >= 0: phi = max(phi, -z). Below
+// the ground every sample turns outside; the two layers around z = 0 are
+// written explicitly (interior tiles included) so the cap's crossings on
+// vertical edges fall exactly on z = 0.
+void clipAtGround(openvdb::FloatGrid& sdf, const GridLayout& g) {
+  const float h = float(g.h);
+  const auto below = [&](int k) { return -(float(g.origin[2]) + (float(k) + 0.5f) * h); };
+  for (auto it = sdf.tree().beginValueOn(); it; ++it)
+    if (it.getCoord().z() < -1) it.setValue(std::max(*it, below(it.getCoord().z())));
+  auto acc = sdf.getAccessor();
+  for (int k : {-1, 0})
+    for (int y = -1; y <= g.ny; ++y)
+      for (int x = -1; x <= g.nx; ++x) {
+        const openvdb::Coord c(x, y, k);
+        const float v = acc.getValue(c);
+        const float clipped = std::max(v, below(k));
+        if (clipped != v || acc.isValueOn(c)) acc.setValueOn(c, clipped);
+      }
+}
 
+// The field's zero crossing as triangles and quads, facing outwards.
+SurfaceMesh polygonise(const openvdb::FloatGrid& sdf, const GridLayout& g, const char* name) {
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*sdf, points, triangles, quads, 0.0, 0.0);
-
+  openvdb::tools::volumeToMesh(sdf, points, triangles, quads, 0.0, 0.0);
+  SurfaceMesh mesh;
+  mesh.name = name;
   mesh.positions.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     float z = points[i].z();
@@ -158,13 +177,30 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
   for (const auto& t : triangles) mesh.triangles.push_back({t[0], t[1], t[2]});
   mesh.quads.reserve(quads.size());
   for (const auto& q : quads) mesh.quads.push_back({q[0], q[1], q[2], q[3]});
-
   // OpenVDB's winding is fixed for a level set; check it rather than rely on it.
   if (signedVolume(mesh) < 0) {
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
     for (auto& q : mesh.quads) std::swap(q[1], q[3]);
   }
   return mesh;
+}
+
+SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
+                            openvdb::FloatGrid::Ptr* field) {
+  const openvdb::BoolGrid::Ptr mask = occupancy(rock, material);
+  if (!mask) {
+    SurfaceMesh empty;
+    empty.name = name;
+    return empty;
+  }
+  // Zero crossing on the faces between occupied and empty voxels; no closing,
+  // no dilation: the surface encloses exactly the voxels before smoothing.
+  openvdb::FloatGrid::Ptr sdf =
+      openvdb::tools::topologyToLevelSet(*mask, params.preview ? kPreviewHalfWidth : kHalfWidth, 0, 0, 0);
+  smoothKeepingSides(*sdf, MaterialAt{rock, material}, params);
+  if (rock.layout.ground) clipAtGround(*sdf, rock.layout);
+  if (field) *field = sdf;
+  return polygonise(*sdf, rock.layout, name);
 }
 
 }  // namespace
@@ -312,12 +348,8 @@ double matchVolume(SurfaceMesh& mesh, double target_volume, double max_offset, b
       const auto& a = mesh.positions[t[0]];
       const auto& b = mesh.positions[t[1]];
       const auto& c = mesh.positions[t[2]];
-      const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-      const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
       const bool cap = ground && a[2] == 0.0f && b[2] == 0.0f && c[2] == 0.0f;
-      if (!cap)
-        area += 0.5 * std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
-                                std::pow(u[0] * v[1] - u[1] * v[0], 2));
+      if (!cap) area += triangleArea(a, b, c);
     }
     if (area <= 0) break;
     const double delta =

@@ -1,12 +1,22 @@
-// Checks a studio runs on a shipped mesh (docs/meshes.md): every LOD closed,
-// 2-manifold, outward, with no fold-overs and no zero-area triangles.
+// The check a studio runs on a shipped mesh (docs/meshes.md, What every mesh
+// is): every LOD closed, 2-manifold, outward, with no fold-overs and no
+// zero-area triangles.
+//
+// Takes a triangle mesh (quads are ignored) and changes nothing; gives the
+// counts and the vertices involved. isDefective is the one test of a bad
+// triangle: checkMesh counts what it finds, and the repairs (fold_over_repair.h,
+// relax_fold_overs.h, collapsed_specks.h) remove what it finds. Deterministic;
+// throws nothing but std::bad_alloc.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "core/edge_table.h"
 #include "core/surface_mesh.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 
@@ -26,28 +36,25 @@ struct MeshDefects {
 // Triangles only (quads are ignored).
 MeshDefects checkMesh(const SurfaceMesh& mesh);
 
-// Removes fold-overs and zero-area triangles from a closed, edge-manifold
-// triangle mesh by flipping edges: a triangle and its neighbour across an edge
-// become the two triangles across the quad's other diagonal, when both new
-// triangles have area and face the same side as the quad's surroundings, and
-// the new edge does not exist yet. Vertices, attributes and the closed,
-// 2-manifold topology are kept; normals are recomputed. Deterministic (the
-// triangles are visited in index order). Returns the defects left (0 when clean).
-std::size_t repairFoldOvers(SurfaceMesh& mesh);
+// Triangle t faces against each of the three triangles across its edges
+// (negative dot product of the normals normal_of(face) gives). `twins` are an
+// EdgeTable's (core/edge_table.h), or a repair's copy kept through its flips:
+// a triangle with an edge that is not paired is not a fold-over.
+template <class NormalOf>
+bool foldsOver(std::span<const std::uint32_t> twins, std::uint32_t t, NormalOf&& normal_of) {
+  const Vec3d n = normal_of(t);
+  for (std::uint32_t k = 0; k < 3; ++k) {
+    const std::uint32_t across = twins[3 * t + k];
+    if (across == EdgeTable::kNone || !(dot(n, normal_of(across / 3)) < 0)) return false;
+  }
+  return true;
+}
 
-// What flips and collapses leave, on a mesh with no error bound to keep (a LOD
-// simplified to a triangle budget): moves vertices. Each vertex of a fold-over
-// or zero-area triangle, in index order, goes to the mean of its neighbours
-// (or halfway, or a quarter of the way), or else halfway or a quarter of the
-// way towards one neighbour, the first that leaves fewer such triangles
-// among those the move can change; up to ten rounds. Topology and attributes
-// are kept; normals are recomputed. Deterministic. Returns the defects left.
-std::size_t relaxFoldOvers(SurfaceMesh& mesh);
+// Triangle t has zero area (core/triangle_geometry.h) or folds over.
+bool isDefective(const SurfaceMesh& mesh, std::span<const std::uint32_t> twins, std::uint32_t t);
 
-// Removes every connected piece of at most `max_triangles` triangles that holds
-// a fold-over or zero-area triangle: at a LOD's budget, a speck of debris
-// (a lone colluvium voxel) simplifies to a handful of triangles lying flat on
-// each other. The mesh stays closed. Returns the triangles removed.
-std::size_t dropCollapsedSpecks(SurfaceMesh& mesh, std::size_t max_triangles);
+// The piece (triangles connected through shared vertices) of every vertex, as
+// DisjointSet::labels numbers them: by each piece's lowest vertex.
+std::vector<std::uint32_t> pieceOfVertex(const SurfaceMesh& mesh);
 
 }  // namespace rockbake

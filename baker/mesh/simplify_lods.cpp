@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -11,345 +12,39 @@
 #include <meshoptimizer.h>
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_sort.h>
 
+#include "core/vec3.h"
+#include "mesh/collapsed_specks.h"
 #include "mesh/mesh_defects.h"
-#include "mesh/subdivide.h"
+#include "mesh/relax_fold_overs.h"
+#include "mesh/simplify_pass.h"
 
 namespace rockbake {
 namespace {
 
-// Half-edges grouped by undirected edge: (min << 32 | max, corner) pairs,
-// sorted, so every face on an edge, in either direction, is one contiguous
-// run. Millions of them sort in a fraction of the time a hash map of lists
-// takes to build. Corner c stands for its half-edge indices[c] → indices[next(c)].
-using HalfEdge = std::pair<std::uint64_t, std::size_t>;
-
-std::size_t nextCorner(std::size_t c) {
-  return c - c % 3 + (c % 3 + 1) % 3;
-}
-
-std::vector<HalfEdge> halfEdgesByEdge(const std::vector<unsigned int>& indices) {
-  std::vector<HalfEdge> edges(indices.size());
-  for (std::size_t c = 0; c < indices.size(); ++c) {
-    const std::uint64_t a = indices[c], b = indices[nextCorner(c)];
-    edges[c] = {(std::min(a, b) << 32) | std::max(a, b), c};
-  }
-  tbb::parallel_sort(edges.begin(), edges.end());
-  return edges;
-}
-
-// Calls visit(key, forward, backward) for each undirected edge: the corners of
-// its half-edges from the lower vertex to the higher, and back.
-template <typename Visit>
-void forEachEdge(const std::vector<unsigned int>& indices, Visit&& visit) {
-  const std::vector<HalfEdge> edges = halfEdgesByEdge(indices);
-  std::vector<std::size_t> forward, backward;
-  for (std::size_t i = 0; i < edges.size();) {
-    const std::uint64_t key = edges[i].first;
-    forward.clear(), backward.clear();
-    for (; i < edges.size() && edges[i].first == key; ++i) {
-      const std::size_t c = edges[i].second;
-      (indices[c] < indices[nextCorner(c)] ? forward : backward).push_back(c);
-    }
-    visit(key, forward, backward);
-  }
-}
-
-// Collapsing a thin part can leave two coincident triangles of opposite
-// winding glued back to back (each of their edges then has four faces).
-// Removing both restores edge-manifoldness; the surface is pinched there, as
-// the collapse intended. Returns the vertices of the removed triangles.
-std::vector<unsigned int> dropSandwiches(std::vector<unsigned int>& indices) {
-  const std::size_t n = indices.size() / 3;
-  // Triangles by their sorted corners: coincident triangles sit side by side.
-  std::vector<std::pair<std::array<unsigned int, 3>, std::size_t>> sorted(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    std::array<unsigned int, 3> c{indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
-    std::sort(c.begin(), c.end());
-    sorted[t] = {c, t};
-  }
-  tbb::parallel_sort(sorted.begin(), sorted.end());
-  std::vector<char> drop(n, 0);
-  std::vector<unsigned int> dropped;
-  // Within a run of equal corners, pair each triangle with the next one of
-  // opposite winding (what is left stays): dropping two of the same winding
-  // would leave their edges with more faces one way than the other, open.
-  const auto ascending = [&](std::size_t t) {  // winds through its corners in increasing order
-    const unsigned int a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
-    return (a < b) + (b < c) + (c < a) == 2;
-  };
-  for (std::size_t i = 0; i < n;) {
-    std::size_t j = i + 1;
-    while (j < n && sorted[j].first == sorted[i].first) ++j;
-    for (std::size_t a = i; a + 1 < j; ++a) {
-      const std::size_t ta = sorted[a].second;
-      if (drop[ta]) continue;
-      for (std::size_t b = a + 1; b < j; ++b) {
-        const std::size_t tb = sorted[b].second;
-        if (drop[tb] || ascending(ta) == ascending(tb)) continue;
-        drop[ta] = drop[tb] = 1;
-        dropped.insert(dropped.end(), sorted[i].first.begin(), sorted[i].first.end());
-        break;
-      }
-    }
-    i = j;
-  }
-  if (dropped.empty()) return dropped;
-  std::size_t w = 0;
-  for (std::size_t t = 0; t < n; ++t)
-    if (!drop[t])
-      for (int k = 0; k < 3; ++k) indices[w++] = indices[3 * t + k];
-  indices.resize(w);
-  return dropped;
-}
-
-// Directed edges whose undirected edge is not used exactly once in each direction.
-std::size_t nonManifoldEdges(const std::vector<unsigned int>& indices) {
-  std::size_t bad = 0;
-  forEachEdge(indices, [&](std::uint64_t, const auto& forward, const auto& backward) {
-    if (forward.size() != 1 || backward.size() != 1) bad += !forward.empty() + !backward.empty();
-  });
-  return bad;
-}
-
-// Makes an edge-paired triangle soup manifold by splitting vertices.
-// Where an undirected edge carries k faces each way (k > 1: sheets touching
-// along the edge, or pinched onto it), each outgoing face is paired with an
-// incoming one: its neighbour around the edge across the solid between the
-// sheets when the faces alternate in direction around it, else the faces in
-// angle order. The faces around each vertex are then grouped into fans joined
-// through those pairs. Two pairs of one edge whose fans coincide at both its
-// ends would still share the edge after the split (the sheets meet there and
-// again elsewhere around both vertices): re-pairing them crosswise splits the
-// fan at each end in two, one pair in each, so it is done until none is left.
-// Every fan after the first of its vertex then gets its own copy of the vertex.
-// Returns, for each vertex of the result beyond `vertex_count`, the vertex it copies.
-std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices,
-                                       const std::vector<std::array<float, 3>>& positions) {
-  const std::size_t vertex_count = positions.size();
-  const std::size_t corners = indices.size();
-  const auto prev = [](std::size_t c) { return c - c % 3 + (c % 3 + 2) % 3; };
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  std::vector<std::size_t> twin(corners, kNone);
-  std::vector<std::vector<std::size_t>> shared;  // per edge with k > 1: its outgoing corners
-  forEachEdge(indices, [&](std::uint64_t k, const auto& list, const auto& back_list) {
-    if (list.size() != back_list.size()) return;  // left open
-    if (list.size() == 1) {
-      twin[list[0]] = back_list[0], twin[back_list[0]] = list[0];
-      return;
-    }
-    shared.push_back(list);
-    // Sort the faces around the edge by angle; an outgoing face's outward
-    // normal turns towards increasing angle, so the solid between two sheets
-    // lies between it and the face just before it: pair those.
-    const auto& pu = positions[k >> 32];
-    const auto& pw = positions[k & 0xffffffffu];
-    const std::array<double, 3> d0{double(pw[0]) - pu[0], double(pw[1]) - pu[1], double(pw[2]) - pu[2]};
-    const double dl = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
-    const std::array<double, 3> d =
-        dl > 0 ? std::array<double, 3>{d0[0] / dl, d0[1] / dl, d0[2] / dl} : std::array<double, 3>{0, 0, 0};
-    const auto radial = [&](std::size_t c) {  // the face's third vertex, off the axis
-      const auto& px = positions[indices[prev(c)]];
-      std::array<double, 3> r{double(px[0]) - pu[0], double(px[1]) - pu[1], double(px[2]) - pu[2]};
-      const double along = r[0] * d[0] + r[1] * d[1] + r[2] * d[2];
-      for (int a = 0; a < 3; ++a) r[a] -= along * d[a];
-      return r;
-    };
-    std::vector<std::pair<double, std::size_t>> around;  // (angle, corner); in-faces marked by the high bit
-    const std::array<double, 3> e1 = radial(list[0]);
-    const std::array<double, 3> e2{d[1] * e1[2] - d[2] * e1[1], d[2] * e1[0] - d[0] * e1[2],
-                                   d[0] * e1[1] - d[1] * e1[0]};
-    const auto angle = [&](std::size_t c) {
-      const auto r = radial(c);
-      return std::atan2(r[0] * e2[0] + r[1] * e2[1] + r[2] * e2[2], r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2]);
-    };
-    constexpr std::size_t kIn = std::size_t(1) << 63;
-    for (std::size_t c : list) around.push_back({angle(c), c});
-    for (std::size_t c : back_list) around.push_back({angle(c), c | kIn});
-    std::sort(around.begin(), around.end());
-    const std::size_t n = around.size();
-    bool alternating = true;
-    for (std::size_t i = 0; i < n; ++i)
-      alternating &= ((around[i].second & kIn) != 0) != ((around[(i + 1) % n].second & kIn) != 0);
-    if (alternating) {
-      for (std::size_t i = 0; i < n; ++i) {
-        if (around[i].second & kIn) continue;
-        const std::size_t out = around[i].second, in = around[(i + n - 1) % n].second & ~kIn;
-        twin[out] = in, twin[in] = out;
-      }
-      return;
-    }
-    // Sheets that cross, or lie on each other (no angle to sort by): any
-    // pairing is as good; the fans below make it manifold.
-    std::vector<std::size_t> outs, ins;
-    for (const auto& [a, c] : around) (c & kIn ? ins : outs).push_back(c & ~kIn);
-    for (std::size_t i = 0; i < outs.size(); ++i) twin[outs[i]] = ins[i], twin[ins[i]] = outs[i];
-  });
-  // Union-find over corners: corner c and the corner across prev(c)'s edge share a vertex and a fan.
-  std::vector<std::size_t> parent(corners);
-  const auto find = [&](std::size_t c) {
-    while (parent[c] != c) c = parent[c] = parent[parent[c]];
-    return c;
-  };
-  const auto group = [&] {
-    for (std::size_t c = 0; c < corners; ++c) parent[c] = c;
-    for (std::size_t c = 0; c < corners; ++c) {
-      const std::size_t t = twin[prev(c)];
-      if (t != kNone) parent[find(c)] = find(t);
-    }
-  };
-  // One crosswise re-pairing per regrouping: each splits fans, so it ends
-  // (a re-pairing decided on stale fans could join two instead). Where an
-  // edge was left open, fans are not closed loops; the bound holds there.
-  std::size_t rounds = 0;
-  for (const auto& outs : shared) rounds += outs.size();
-  for (group(); rounds > 0; --rounds, group()) {
-    bool repaired = false;
-    for (std::size_t e = 0; e < shared.size() && !repaired; ++e) {
-      const auto& outs = shared[e];
-      // An outgoing corner sits at the edge's lower vertex, the next one at the higher.
-      const auto ends = [&](std::size_t out) { return std::pair{find(out), find(nextCorner(out))}; };
-      for (std::size_t i = 0; i < outs.size() && !repaired; ++i)
-        for (std::size_t j = i + 1; j < outs.size() && !repaired; ++j)
-          if (ends(outs[i]) == ends(outs[j])) {
-            const std::size_t a = outs[i], b = outs[j], ta = twin[a], tb = twin[b];
-            twin[a] = tb, twin[tb] = a, twin[b] = ta, twin[ta] = b;
-            repaired = true;
-          }
-    }
-    if (!repaired) break;
-  }
-  std::vector<std::size_t> fan_of_vertex(vertex_count, kNone);  // the root that keeps the vertex
-  std::unordered_map<std::size_t, unsigned int> copy_of_root;
-  std::vector<unsigned int> copies;
-  for (std::size_t c = 0; c < corners; ++c) {
-    const unsigned int v = indices[c];
-    const std::size_t root = find(c);
-    if (fan_of_vertex[v] == kNone) fan_of_vertex[v] = root;
-    if (fan_of_vertex[v] == root) continue;
-    auto [it, fresh] = copy_of_root.try_emplace(root, unsigned(vertex_count + copies.size()));
-    if (fresh) copies.push_back(v);
-    indices[c] = it->second;
-  }
-  return copies;
-}
-
-using Point = std::array<float, 3>;
-
-// One simplification pass: the unlocked triangles simplified with their
-// border (where they meet the locked ones) held in place, the locked ones kept
-// as they are, then the simplifier's damage repaired as far as it can be.
-struct Pass {
-  SurfaceMesh mesh;
-  std::size_t bad_edges = 0;   // edges not shared by exactly two faces after the repair
-  std::vector<Point> torn;     // vertices of those edges
-  std::vector<Point> cut;      // pinches that cut the surface in two
-  std::vector<Point> folded;   // vertices of fold-overs and zero-area triangles the repair left
-  std::size_t folds_left = 0;  // how many such triangles
-};
-
-Pass simplifyPass(const SurfaceMesh& m, const std::vector<unsigned int>& indices, const std::vector<char>& locked,
-                  std::size_t target_indices, float relative_error, std::size_t level) {
-  std::vector<unsigned int> free, kept;
-  for (std::size_t t = 0; t < locked.size(); ++t)
-    (locked[t] ? kept : free).insert((locked[t] ? kept : free).end(), &indices[3 * t], &indices[3 * t] + 3);
-  const std::size_t free_target =
-      std::min(free.size(), target_indices > kept.size() + 12 ? target_indices - kept.size() : std::size_t(12));
-  std::vector<unsigned int> result(free.size());
-  float error = 0.0f;
-  result.resize(meshopt_simplify(result.data(), free.data(), free.size(), &m.positions[0][0], m.positions.size(),
-                                 sizeof(Point), free_target, relative_error, meshopt_SimplifyLockBorder, &error));
-  result.insert(result.end(), kept.begin(), kept.end());
-
-  Pass pass;
-  const std::vector<unsigned int> glued = dropSandwiches(result);
-  const std::vector<unsigned int> copies = splitPinches(result, m.positions);
-  pass.bad_edges = nonManifoldEdges(result);
-  spdlog::debug(
-      "LOD{} of {}: {} → {} triangles ({} locked), error {:.2g}, {} pinched vertices split, {} glued, "
-      "{} non-manifold edges",
-      level, m.name, m.triangles.size(), result.size() / 3, kept.size() / 3, error, copies.size(), glued.size() / 3,
-      pass.bad_edges);
-  // A pinch whose split leaves the copy and its vertex in different pieces cut
-  // the surface in two (a neck collapsed to a point); other pinches, and glued
-  // pairs, only change the genus or seal a slot thinner than the error.
-  if (!copies.empty()) {
-    std::vector<std::uint32_t> parent(m.positions.size() + copies.size());
-    for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-    const auto find = [&](std::uint32_t v) {
-      while (parent[v] != v) v = parent[v] = parent[parent[v]];
-      return v;
-    };
-    for (std::size_t t = 0; t < result.size(); t += 3)
-      parent[find(result[t + 1])] = find(result[t]), parent[find(result[t + 2])] = find(result[t]);
-    for (std::size_t j = 0; j < copies.size(); ++j)
-      if (find(std::uint32_t(m.positions.size() + j)) != find(copies[j])) pass.cut.push_back(m.positions[copies[j]]);
-  }
-  const auto source = [&](std::size_t i) {
-    return i < m.positions.size() ? i : std::size_t(copies[i - m.positions.size()]);
-  };
-
-  // Keep only the vertices still referenced, in their original order (copies last).
-  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> remap(m.positions.size() + copies.size(), kUnused);
-  for (unsigned int i : result) remap[i] = 0;
-  SurfaceMesh& out = pass.mesh;
-  out.name = m.name;
-  for (std::size_t i = 0; i < remap.size(); ++i) {
-    if (remap[i] == kUnused) continue;
-    remap[i] = std::uint32_t(out.positions.size());
-    const std::size_t s = source(i);
-    out.positions.push_back(m.positions[s]);
-    out.durability.push_back(m.durability[s]);
-    out.colluvium.push_back(m.colluvium[s]);
-    out.curvature.push_back(m.curvature[s]);
-    out.altitude.push_back(m.altitude[s]);
-    if (!m.colors.empty()) out.colors.push_back(m.colors[s]);
-  }
-  out.triangles.reserve(result.size() / 3);
-  for (std::size_t t = 0; t < result.size(); t += 3)
-    out.triangles.push_back({remap[result[t]], remap[result[t + 1]], remap[result[t + 2]]});
-  // meshoptimizer 0.18 lets a collapse leave a triangle of zero area or one
-  // folded against its neighbours; flip and collapse those away (the repair
-  // needs every edge paired).
-  if (pass.bad_edges == 0)
-    repairFoldOvers(out);
-  else
-    computeVertexNormals(out);
-  const MeshDefects d = checkMesh(out);
-  pass.folds_left = d.fold_overs + d.zero_area;
-  for (std::uint32_t v : d.open_edge_vertices) pass.torn.push_back(out.positions[v]);
-  if (pass.bad_edges == 0)
-    for (std::uint32_t v : d.defect_vertices) pass.folded.push_back(out.positions[v]);
-  return pass;
-}
-
 // Locks every triangle of `m` with a vertex within `radius` of a trouble point
 // (a hash grid of the points, cells `radius` wide).
-void lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double radius, std::vector<char>& locked) {
-  const auto cell = [&](const Point& p) {
+void lockAround(const SurfaceMesh& m, const std::vector<Vec3f>& trouble, double radius, std::vector<char>& locked) {
+  const auto cell = [&](const Vec3f& p) {
     return std::array<std::int64_t, 3>{std::int64_t(std::floor(p[0] / radius)), std::int64_t(std::floor(p[1] / radius)),
                                        std::int64_t(std::floor(p[2] / radius))};
   };
   const auto key = [](const std::array<std::int64_t, 3>& c) {
     return std::uint64_t(c[0] * 73856093) ^ std::uint64_t(c[1] * 19349663) ^ std::uint64_t(c[2] * 83492791);
   };
-  std::unordered_map<std::uint64_t, std::vector<Point>> grid;
-  for (const Point& p : trouble) grid[key(cell(p))].push_back(p);
+  std::unordered_map<std::uint64_t, std::vector<Vec3f>> grid;
+  for (const Vec3f& p : trouble) grid[key(cell(p))].push_back(p);
   std::vector<char> near(m.positions.size(), 0);
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
-    const Point& p = m.positions[v];
+    const Vec3f& p = m.positions[v];
     const auto c = cell(p);
     for (int dx = -1; dx <= 1 && !near[v]; ++dx)
       for (int dy = -1; dy <= 1 && !near[v]; ++dy)
         for (int dz = -1; dz <= 1 && !near[v]; ++dz) {
           const auto it = grid.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
           if (it == grid.end()) continue;
-          for (const Point& q : it->second) {
-            const double d2 =
-                std::pow(double(p[0]) - q[0], 2) + std::pow(double(p[1]) - q[1], 2) + std::pow(double(p[2]) - q[2], 2);
-            if (d2 <= radius * radius) {
+          for (const Vec3f& q : it->second) {
+            if (distanceSquared(toVec3d(p), toVec3d(q)) <= radius * radius) {
               near[v] = 1;
               break;
             }
@@ -365,12 +60,7 @@ void lockAround(const SurfaceMesh& m, const std::vector<Point>& trouble, double 
 double meanEdgeLength(const SurfaceMesh& m) {
   double sum = 0;
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const Point& a = m.positions[t[k]];
-      const Point& b = m.positions[t[(k + 1) % 3]];
-      sum += std::sqrt(std::pow(double(a[0]) - b[0], 2) + std::pow(double(a[1]) - b[1], 2) +
-                       std::pow(double(a[2]) - b[2], 2));
-    }
+    for (int k = 0; k < 3; ++k) sum += length(sub(toVec3d(m.positions[t[k]]), toVec3d(m.positions[t[(k + 1) % 3]])));
   return m.triangles.empty() ? 0.0 : sum / double(3 * m.triangles.size());
 }
 
@@ -379,7 +69,7 @@ constexpr std::size_t kSpeckTriangles = 24;
 
 // Moves vertices of what the repair left towards their neighbours, drops
 // specks still folded, and counts again.
-void relaxLeftovers(Pass& pass) {
+void relaxLeftovers(SimplifyPass& pass) {
   if (relaxFoldOvers(pass.mesh) > 0) dropCollapsedSpecks(pass.mesh, kSpeckTriangles);
   const MeshDefects d = checkMesh(pass.mesh);
   pass.folds_left = d.fold_overs + d.zero_area;
@@ -401,12 +91,12 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
   std::vector<unsigned int> indices(index_count);
   for (std::size_t t = 0; t < m.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k) indices[3 * t + k] = m.triangles[t][k];
-  const float scale = meshopt_simplifyScale(&m.positions[0][0], m.positions.size(), sizeof(Point));
+  const float scale = meshopt_simplifyScale(&m.positions[0][0], m.positions.size(), sizeof(Vec3f));
   const float relative_error = max_error < 0 || scale <= 0 ? 1.0f : float(max_error / scale);
 
   // Defects the input already has are not the simplifier's doing.
   const MeshDefects input = checkMesh(m);
-  std::vector<Point> inherited;
+  std::vector<Vec3f> inherited;
   for (std::uint32_t v : input.defect_vertices) inherited.push_back(m.positions[v]);
   std::sort(inherited.begin(), inherited.end());
 
@@ -420,21 +110,21 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
   constexpr int kPasses = 7;
   constexpr std::array<double, kPasses> kNudge{1.0, 0.99, 1.01, 0.98, 1.02, 1.0, 1.0};
   std::vector<char> locked(m.triangles.size(), 0);
-  std::optional<Pass> best;
+  std::optional<SimplifyPass> best;
   std::size_t best_score = std::numeric_limits<std::size_t>::max();
   double radius = 2.0 * meanEdgeLength(m);
   for (int attempt = 0; attempt < kPasses; ++attempt) {
     const std::size_t pass_target =
         budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
                : target;
-    Pass pass = simplifyPass(m, indices, locked, pass_target, relative_error, level);
+    SimplifyPass pass = simplifyPass(m, indices, locked, pass_target, relative_error, level);
     // A budget has no error bound to keep: what the repair left is relaxed away before the passes are compared.
     if (budget && pass.bad_edges == 0 && pass.folds_left > 0) relaxLeftovers(pass);
-    std::vector<Point> folds;
-    for (const Point& p : pass.folded)
+    std::vector<Vec3f> folds;
+    for (const Vec3f& p : pass.folded)
       if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
     const std::size_t score = 1000000 * pass.bad_edges + 1000 * pass.cut.size() + folds.size();
-    std::vector<Point> lock_around = pass.torn;
+    std::vector<Vec3f> lock_around = pass.torn;
     if (!budget) {
       lock_around.insert(lock_around.end(), pass.cut.begin(), pass.cut.end());
       lock_around.insert(lock_around.end(), folds.begin(), folds.end());
@@ -459,24 +149,6 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
 }
 
 }  // namespace
-
-std::size_t splitNonManifold(SurfaceMesh& mesh) {
-  std::vector<unsigned int> indices;
-  indices.reserve(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
-  const std::vector<unsigned int> copies = splitPinches(indices, mesh.positions);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) mesh.triangles[t][k] = indices[3 * t + k];
-  const std::size_t n = mesh.positions.size();
-  const auto extend = [&](auto& attribute) {
-    if (attribute.size() != n) return;
-    for (unsigned int v : copies) attribute.push_back(attribute[v]);
-  };
-  extend(mesh.durability), extend(mesh.colluvium), extend(mesh.curvature), extend(mesh.altitude);
-  extend(mesh.colors), extend(mesh.positions);
-  computeVertexNormals(mesh);
-  return copies.size();
-}
 
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
   AssetMeshes lod0;

@@ -1,9 +1,19 @@
-// Levels of detail (docs/meshes.md): meshoptimizer edge-collapse simplification of
-// each surface, borders locked, every kept vertex keeping its attributes and
-// colour (meshoptimizer only removes vertices, so every vertex of a LOD lies on
-// the surface it was simplified from); normals recomputed. LOD0 is simplified
-// to an error bound, the further LODs to triangle budgets. No LOD has
-// fold-overs or zero-area triangles (repairFoldOvers after the simplifier).
+// Levels of detail (docs/meshes.md, LOD0 and its bound; The LOD chain and
+// its budgets). Each surface is simplified by meshoptimizer's edge collapse
+// in passes (simplify_pass.h), borders locked; meshoptimizer only removes
+// vertices, so every vertex of a LOD lies on the surface it was simplified
+// from and keeps its values in every per-vertex array; normals recomputed.
+// LOD0 is simplified to an error bound, the further LODs to triangle budgets.
+//
+// meshoptimizer does not keep manifoldness by itself: each pass cuts glued
+// sheets apart and repairs fold-overs (simplify_pass.h). Where a collapse
+// still tore an edge, cut the surface in two or (LOD0) left a fold, the
+// triangles around that place are locked and the rest simplified again; the
+// cleanest pass is kept, and a warning logged naming the LOD if it still has
+// such an edge or fold. A budgeted LOD has no error bound to keep: what the
+// repair leaves is relaxed (relax_fold_overs.h) and collapsed specks dropped
+// (collapsed_specks.h). Input meshes must be triangle-only. Deterministic; the
+// two surfaces simplify in parallel.
 #pragma once
 
 #include <cstddef>
@@ -22,26 +32,12 @@ struct LodParams {
 
 // LOD0: each surface simplified as far as meshoptimizer can while its error
 // (its distance estimate from the input surface) stays within `max_error`
-// (world units). Input meshes must be triangle-only.
+// (world units).
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error);
 
-// One AssetMeshes per target, in order. Input meshes must be triangle-only.
-// Targets are approached with no error bound (meshoptimizer may stop a little
-// short where every collapse would flip a face). meshoptimizer does not keep
-// manifoldness by itself, so coincident back-to-back triangle pairs are
-// removed and the surface is cut apart where it glued two sheets together along
-// an edge or at a vertex (splitNonManifold; the copies coincide). Should an
-// edge still not be shared by exactly two faces, triangles around it are kept
-// as they are and the rest simplified again; the best result is kept, and a
-// warning logged if it still has such an edge.
+// One AssetMeshes per target, in order. Targets are approached with no error
+// bound (meshoptimizer may stop a little short where every collapse would flip
+// a face).
 std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params);
-
-// Makes a closed triangle mesh 2-manifold without moving anything: where
-// several sheets meet along an edge (more than one face each way) or at a
-// vertex, each sheet gets its own copies of the vertices there, with their
-// attributes; normals are recomputed. Every edge must be used as often each
-// way (as collapsing a closed mesh leaves it). Deterministic. Returns the
-// vertices added.
-std::size_t splitNonManifold(SurfaceMesh& mesh);
 
 }  // namespace rockbake

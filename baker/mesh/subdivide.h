@@ -17,8 +17,10 @@ struct SubdivideParams {
 };
 
 // Returns a triangle-only mesh (each refined quad split along its shorter
-// diagonal) with area-weighted unit vertex normals; colours are dropped
-// (apply the palette afterwards). An empty mesh stays empty.
+// diagonal) with area-weighted unit vertex normals. Of the per-vertex arrays
+// (core/surface_mesh.h), positions and the four baked attributes are refined;
+// colours are dropped (apply the palette afterwards), as is any array added
+// after them. An empty mesh stays empty.
 // Throws std::invalid_argument if levels is outside 0..3 or the mesh is not a
 // valid closed manifold OpenSubdiv accepts.
 SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& params);

@@ -8,11 +8,34 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/edge_table.h"
 #include "core/hash.h"
+#include "core/triangle_geometry.h"
+#include "core/vec3.h"
 #include "mesh/subdivide.h"
 #include "sim/durability.h"
 
 namespace rockbake {
+namespace {
+
+// Pairs of triangles across an edge that face the same side (by `normal`):
+// on each edge, its faces in increasing order, each with the next.
+std::vector<std::array<std::uint32_t, 2>> facingPairs(const SurfaceMesh& mesh, const std::vector<Vec3d>& normal) {
+  const EdgeTable edges(mesh.triangles);
+  std::vector<std::array<std::uint32_t, 2>> pairs;
+  std::vector<std::uint32_t> faces;
+  for (std::uint32_t e = 0; e < edges.edges().size(); ++e) {
+    faces.clear();
+    for (std::uint32_t c : edges.forwardCorners(e)) faces.push_back(edges.face(c));
+    for (std::uint32_t c : edges.backwardCorners(e)) faces.push_back(edges.face(c));
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t i = 0; i + 1 < faces.size(); ++i)
+      if (dot(normal[faces[i]], normal[faces[i + 1]]) > 0) pairs.push_back({faces[i], faces[i + 1]});
+  }
+  return pairs;
+}
+
+}  // namespace
 
 void displaceSurface(SurfaceMesh& mesh, const DetailParams& params) {
   const std::size_t n = mesh.positions.size();
@@ -52,32 +75,16 @@ void displaceSurface(SurfaceMesh& mesh, const DetailParams& params) {
   // Order-free, so the result does not depend on the thread count.
   const std::vector<std::array<float, 3>> rest = mesh.positions;
   const std::size_t nt = mesh.triangles.size();
-  using Vec = std::array<double, 3>;
-  const auto dot = [](const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  const auto normals = [&](const std::vector<std::array<float, 3>>& at, std::vector<Vec>& out) {
+  const auto normals = [&](const std::vector<Vec3f>& at, std::vector<Vec3d>& out) {
     out.resize(nt);
     tbb::parallel_for(std::size_t(0), nt, [&](std::size_t f) {
       const auto& t = mesh.triangles[f];
-      Vec u, v;
-      for (int a = 0; a < 3; ++a) u[a] = double(at[t[1]][a]) - at[t[0]][a], v[a] = double(at[t[2]][a]) - at[t[0]][a];
-      out[f] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      out[f] = triangleNormal(at[t[0]], at[t[1]], at[t[2]]);
     });
   };
-  // Pairs of triangles across an edge that faced the same side before.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
-  edges.reserve(3 * nt);
-  for (std::uint32_t f = 0; f < nt; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint64_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
-      edges.push_back({std::min(a, b) << 32 | std::max(a, b), f});
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<Vec> before, after;
+  std::vector<Vec3d> before, after;
   normals(rest, before);
-  std::vector<std::array<std::uint32_t, 2>> pairs;
-  for (std::size_t e = 0; e + 1 < edges.size(); ++e)
-    if (edges[e].first == edges[e + 1].first && dot(before[edges[e].second], before[edges[e + 1].second]) > 0)
-      pairs.push_back({edges[e].second, edges[e + 1].second});
+  const std::vector<std::array<std::uint32_t, 2>> pairs = facingPairs(mesh, before);
 
   const auto place = [&](std::size_t i) {
     auto& p = mesh.positions[i];

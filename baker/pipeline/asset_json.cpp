@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/colour.h"
+#include "core/triangle_geometry.h"
 
 namespace rockbake {
 
@@ -19,13 +20,7 @@ std::array<double, 3> averageColor(const AssetMeshes& meshes) {
   for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
     if (m->colors.size() != m->positions.size()) continue;
     for (const auto& t : m->triangles) {
-      const auto& a = m->positions[t[0]];
-      const auto& b = m->positions[t[1]];
-      const auto& c = m->positions[t[2]];
-      const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-      const double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-      const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
-      const double w = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+      const double w = triangleArea(m->positions[t[0]], m->positions[t[1]], m->positions[t[2]]);
       for (int k = 0; k < 3; ++k)
         for (int ch = 0; ch < 3; ++ch) sum[ch] += w / 3.0 * m->colors[t[k]][ch];
       area += w;

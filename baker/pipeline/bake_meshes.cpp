@@ -12,7 +12,7 @@
 
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
-#include "mesh/mesh_defects.h"
+#include "mesh/fold_over_repair.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "core/vec3.h"
 #include "preset/render_templates.h"
 
 namespace rockbake {
@@ -192,9 +193,8 @@ CameraSetup frameCamera(const AssetFrame& meshes, int width, int height, double 
   // Unit vectors, world frame: `back` from the centre towards the camera.
   const Vec3 back{std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
   const Vec3 right{-std::sin(az), std::cos(az), 0.0};  // back × z, normalised: screen right
-  const Vec3 up{back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
-                back[0] * right[1] - back[1] * right[0]};  // right × back: screen up
-  auto dot = [](const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  // back × right: screen up.
+  const Vec3 up = cross(back, right);
 
   // Two sufficient distances; the nearer wins. (1) The bounding sphere just
   // fits the narrower field of view. (2) Every corner of the bounding box

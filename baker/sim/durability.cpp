@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/hash.h"
+#include "core/vec3.h"
 #include "sim/distance_field.h"
 
 namespace rockbake {
@@ -107,13 +108,6 @@ namespace {
 
 constexpr double kRadiansPerDegree = M_PI / 180.0;
 
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec3d minus(const Vec3d& a, const Vec3d& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
 // The part of [t - h/2, t + h/2] (a voxel's extent along a plane's normal) within w of the plane at 0.
 double zoneCoverage(double t, double w, double h) {
   const double a = std::abs(t);
@@ -133,8 +127,7 @@ Geology::Frame Geology::planeFrame(double strike, double dip) {
   const Vec3d along{std::sin(s), std::cos(s), 0.0};
   const Vec3d down_dip{std::cos(s), -std::sin(s), 0.0};  // horizontal, to the strike's right
   const Vec3d normal{std::sin(d) * down_dip[0], std::sin(d) * down_dip[1], std::cos(d)};
-  const Vec3d across{normal[1] * along[2] - normal[2] * along[1], normal[2] * along[0] - normal[0] * along[2],
-                     normal[0] * along[1] - normal[1] * along[0]};
+  const Vec3d across = cross(normal, along);
   return {normal, along, across};
 }
 
@@ -161,7 +154,7 @@ Geology::Geology(const DurabilityParams& params, const Vec3d& domain, std::uint6
 }
 
 double Geology::bedAltitude(const Vec3d& world) const {
-  const Vec3d p = minus(world, center_);
+  const Vec3d p = sub(world, center_);
   double along_normal = dot(p, beds_.normal);
   if (warp_) {
     // A fold moves the beds along their normal by the same amount through
@@ -180,7 +173,7 @@ double Geology::planePosition(const JointField& set, std::size_t index, long lon
 
 double Geology::jointDistance(std::size_t index, const Vec3d& world) const {
   const JointField& set = joints_[index];
-  const double t = dot(minus(world, center_), set.frame.normal);
+  const double t = dot(sub(world, center_), set.frame.normal);
   // Planes move at most jitter / 2 < spacing / 2 from their regular place: the
   // nearest is among the regular places' neighbours.
   const long long k0 = (long long)std::floor(t / set.params.spacing - set.offset);

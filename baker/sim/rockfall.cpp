@@ -7,6 +7,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/disjoint_set.h"
+
 namespace rockbake {
 namespace {
 
@@ -194,20 +196,12 @@ std::vector<Cell> RockfallSolver::floatingCells(const VoxelRock& rock) const {
   runs.reserve(row_start[rows]);
   for (const auto& layer : layer_runs) runs.insert(runs.end(), layer.begin(), layer.end());
 
-  std::vector<std::uint32_t> parent(runs.size());
-  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  const auto find = [&](std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  DisjointSet components(runs.size());  // of runs
   // Joins the runs of two rows that overlap in x (face neighbours).
   const auto joinRows = [&](std::size_t a, std::size_t b) {
     std::uint32_t i = row_start[a], j = row_start[b];
     while (i < row_start[a + 1] && j < row_start[b + 1]) {
-      if (runs[i].x1 >= runs[j].x0 && runs[j].x1 >= runs[i].x0) {
-        const std::uint32_t ri = find(i), rj = find(j);
-        if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
-      }
+      if (runs[i].x1 >= runs[j].x0 && runs[j].x1 >= runs[i].x0) components.unite(i, j);
       if (runs[i].x1 < runs[j].x1)
         ++i;
       else
@@ -221,12 +215,12 @@ std::vector<Cell> RockfallSolver::floatingCells(const VoxelRock& rock) const {
       if (z > 0) joinRows(row, row - std::size_t(g.ny));
     }
   std::vector<std::uint8_t> grounded(runs.size(), 0);
-  for (std::uint32_t i = 0; i < row_start[std::size_t(g.ny)]; ++i) grounded[find(i)] = 1;  // layer z = 0
+  for (std::uint32_t i = 0; i < row_start[std::size_t(g.ny)]; ++i) grounded[components.find(i)] = 1;  // layer z = 0
 
   std::vector<Cell> floating;
   for (std::size_t row = 0; row < rows; ++row)
     for (std::uint32_t i = row_start[row]; i < row_start[row + 1]; ++i)
-      if (!grounded[find(i)]) {
+      if (!grounded[components.find(i)]) {
         const int y = int(row % std::size_t(g.ny)), z = int(row / std::size_t(g.ny));
         for (int x = runs[i].x0; x <= runs[i].x1; ++x) floating.push_back(Cell(g.index(x, y, z)));
       }

@@ -15,6 +15,7 @@
 #include "core/colour.h"
 #include "core/mesh_checks.h"
 #include "core/stopwatch.h"
+#include "core/triangle_geometry.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
@@ -108,13 +109,7 @@ std::size_t expectClosedManifold(const SurfaceMesh& m) {
 }
 
 double triangleArea(const SurfaceMesh& m, const std::array<std::uint32_t, 3>& t) {
-  const auto& a = m.positions[t[0]];
-  const auto& b = m.positions[t[1]];
-  const auto& c = m.positions[t[2]];
-  const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-  const double w[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-  const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return rockbake::triangleArea(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
 }
 
 void expectNoDegenerateFaces(const SurfaceMesh& m, double min_area) {

@@ -19,12 +19,16 @@
 #include <vector>
 
 #include "core/openvdb_support.h"
+#include "core/triangle_geometry.h"
 #include "inputs/mesh_reader.h"
 #include "inputs/resolve_shape.h"
 #include "mesh/bake_attributes.h"
+#include "mesh/collapsed_specks.h"
 #include "mesh/extract_surfaces.h"
+#include "mesh/fold_over_repair.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/simplify_lods.h"
+#include "mesh/split_non_manifold.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"
 #include "pipeline/bake_asset.h"
@@ -317,10 +321,7 @@ SurfaceMesh slotsMeetingAlongAnEdge() {
   // Wound so each triangle faces away from the solid.
   const auto face = [&](std::uint32_t a, std::uint32_t b, std::uint32_t d) {
     const auto &pa = m.positions[a], &pb = m.positions[b], &pd = m.positions[d];
-    const std::array<double, 3> e1{pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]};
-    const std::array<double, 3> e2{pd[0] - pa[0], pd[1] - pa[1], pd[2] - pa[2]};
-    const std::array<double, 3> n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                                  e1[0] * e2[1] - e1[1] * e2[0]};
+    const Vec3d n = triangleNormal(pa, pb, pd);
     const auto at = [&](int k) { return (pa[k] + pb[k] + pd[k]) / 3.0 + 1e-3 * n[k]; };
     if (solid(at(0), at(1), at(2)))
       m.triangles.push_back({a, d, b});
