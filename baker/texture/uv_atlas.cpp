@@ -9,7 +9,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "texture/mesh_helpers.h"
+#include "core/edge_table.h"
+#include "core/vec3.h"
 #include "texture/pack_charts.h"
 #include "texture/parameterize_chart.h"
 #include "texture/segment_charts.h"
@@ -32,7 +33,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
   std::vector<std::vector<std::uint32_t>> pending(count);
   for (std::uint32_t t = 0; t < chart_of.size(); ++t) pending[chart_of[t]].push_back(t);
 
-  const auto across = texture_detail::triangleNeighbours(mesh.triangles);
+  const EdgeTable edges(mesh.triangles);
   std::vector<FlatChart> done;
   while (!pending.empty()) {
     std::vector<ChartUv> flat(pending.size());
@@ -43,7 +44,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
       if (flat[i].status == ChartStatus::Ok) {
         done.push_back({surface, std::move(pending[i]), std::move(flat[i])});
       } else {
-        auto halves = splitChart(mesh, across, pending[i]);
+        auto halves = splitChart(mesh, edges, pending[i]);
         for (auto& half : halves) {
           std::sort(half.begin(), half.end());
           if (!half.empty()) again.push_back(std::move(half));
@@ -136,13 +137,12 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
 }
 
 double texelDensity(const AssetMeshes& meshes, int size) {
-  using namespace texture_detail;
   std::vector<std::pair<double, double>> density;  // (texels per unit, area)
   double total = 0;
   for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
     if (m->uvs.size() != m->positions.size()) continue;
     for (const auto& t : m->triangles) {
-      const V3 a = toV3(m->positions[t[0]]), b = toV3(m->positions[t[1]]), c = toV3(m->positions[t[2]]);
+      const Vec3d a = toVec3d(m->positions[t[0]]), b = toVec3d(m->positions[t[1]]), c = toVec3d(m->positions[t[2]]);
       const double area = 0.5 * length(cross(sub(b, a), sub(c, a)));
       const auto &p = m->uvs[t[0]], &q = m->uvs[t[1]], &r = m->uvs[t[2]];
       const double uv =
