@@ -12,7 +12,8 @@
 // (texels claimed by two triangles, atlas use, share of the surface within 2x of the median
 // texel density) and, unless --no-fidelity, the normal fidelity: the mean angle between LOD0's
 // normal and the LOD's, geometry alone and decoded from the written PNGs by glTF's rules in
-// this file's own code. --dump writes each LOD's atlas, charts in colours, into DIR/<rule>.
+// this file's own code, and the base colour map's mean absolute difference (linear) from
+// LOD0's vertex colours. --dump writes each LOD's atlas, charts in colours, into DIR/<rule>.
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -158,6 +159,35 @@ std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& siz
   return pixels;
 }
 
+// An 8-bit RGB PNG as written, with libpng's own API: the base colour map.
+std::vector<std::uint8_t> readPng8(const std::filesystem::path& file, int& size) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) throw std::runtime_error("cannot open " + file.string());
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    throw std::runtime_error("cannot read " + file.string());
+  }
+  png_init_io(png, f);
+  png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  size = int(png_get_image_width(png, info));
+  png_bytepp rows = png_get_rows(png, info);
+  std::vector<std::uint8_t> pixels(std::size_t(size) * std::size_t(size) * 3);
+  for (int y = 0; y < size; ++y)
+    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 3);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return pixels;
+}
+
+// sRGB's transfer function, decoded (IEC 61966-2-1).
+double srgbToLinear(std::uint8_t byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
 using V = std::array<double, 3>;
 V sub(const V& a, const V& b) {
   return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -245,6 +275,43 @@ Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map,
     }
   const double n = double(std::max<std::size_t>(count, 1));
   return {sum.geometry / n, sum.mapped / n, sum.both_mapped / n};
+}
+
+// The mean absolute difference, linear RGB averaged over the channels and the LOD's covered
+// texels, between the LOD's base colour map (decoded from the PNG by sRGB's rule) and LOD0's
+// interpolated vertex colours where the line along the LOD's normal meets LOD0.
+double baseColourError(const AssetMeshes& lod, const std::vector<std::uint8_t>& map, int size, const AssetMeshes& lod0,
+                       const RaySource& lod0_rays, double reach) {
+  const TexelMap texels = rasterizeUv(lod, size);
+  double sum = 0;
+  std::size_t count = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
+      if (texels.texels[i] == kEmptyTexel) continue;
+      const TriangleRef ref = triangleRef(lod, texels.texels[i]);
+      const SurfaceMesh& m = ref.surface == 0 ? lod.rock : lod.colluvium;
+      const auto w = texelBarycentrics(m, ref.triangle, x, y, size);
+      V p{0, 0, 0}, n{0, 0, 0};
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = m.triangles[ref.triangle][c];
+          p[k] += w[c] * m.positions[v][k], n[k] += w[c] * m.normals[v][k];
+        }
+      n = unit(n);
+      const SourceHit hit = lod0_rays.nearestAlong(ref.surface, {float(p[0]), float(p[1]), float(p[2])},
+                                                   {float(n[0]), float(n[1]), float(n[2])}, float(reach));
+      if (!hit.hit) continue;
+      const SurfaceMesh& m0 = ref.surface == 0 ? lod0.rock : lod0.colluvium;
+      const double w0[3] = {1.0 - hit.u - hit.v, hit.u, hit.v};
+      for (int k = 0; k < 3; ++k) {
+        double expected = 0;
+        for (int c = 0; c < 3; ++c) expected += w0[c] * m0.colors[m0.triangles[hit.triangle][c]][k];
+        sum += std::abs(srgbToLinear(map[3 * i + std::size_t(k)]) - expected);
+      }
+      ++count;
+    }
+  return sum / double(3 * std::max<std::size_t>(count, 1));
 }
 
 // A /proc/self/status field in MiB ("VmRSS", "VmHWM").
@@ -378,17 +445,23 @@ int main(int argc, char** argv) {
       const UvFigures f = uvFigures(atlas, texels);
       int map_size = 0;
       const auto map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
+      int colour_size = 0;
+      const auto colour =
+          readPng8(last / textureFileName(preset.name, TextureMap::BaseColor, k == 0 ? -1 : int(k)), colour_size);
+      const double colour_error =
+          baseColourError(set.lods[k], colour, colour_size, set.lods[0], lod0_rays, 0.1 * lod0_rays.radius());
       const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_size,
                                                        lod0_rays, 0.1 * lod0_rays.radius())
                                             : Fidelity{};
       std::printf(
           "LOD%zu: %zu triangles (target %s), %.0f texels/unit; contested %.3f %%, use %.1f %%, within 2x of "
           "median density %.1f %%; normal vs LOD0: geometry %.2f°, map %.2f° (%.2f x), both with maps %.2f° "
-          "(%.2f x)\n",
+          "(%.2f x); base colour vs LOD0's vertex colours %.4f (linear, mean absolute)\n",
           k, set.lods[k].rock.triangles.size() + set.lods[k].colluvium.triangles.size(),
           k == 0 ? "-" : std::to_string(int(preset.mesh.lods[k - 1])).c_str(), set.texels_per_unit[k],
           100 * f.contested, 100 * f.use, 100 * f.within_twice_median, fid.geometry, fid.mapped,
-          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9));
+          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9),
+          colour_error);
       if (dump) dumpAtlas(atlas, texels, out / rule / ("atlas_lod" + std::to_string(k) + ".png"));
     }
   }

@@ -119,6 +119,39 @@ TEST(TextureBake, NoTexturesMakesNoneAndChangesTheInputHash) {
   EXPECT_EQ(readBytes(out / "small" / "rock.obj").find("\nvt "), std::string::npos);
 }
 
+TEST(TextureBake, LibraryAndResumeTakeNoTexturesToo) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  writeText(dir.path() / "lib.yaml", "- preset: small.yaml\n");
+  const fs::path out = dir.path() / "out";
+  // A library with --no-textures: no texture set; the same library without it is not
+  // taken for done (the input hash counts the texture block) and bakes one.
+  auto result =
+      runRockbake({"library", (dir.path() / "lib.yaml").string(), "-o", out.string(), "--no-render", "--no-textures"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  ASSERT_EQ(fs::exists(out / "small" / "manifest.json"), true) << result.output;
+  EXPECT_FALSE(fs::exists(out / "small" / "textures"));
+  result = runRockbake({"library", (dir.path() / "lib.yaml").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "small" / "textures" / "small_BaseColor.png"));
+
+  // resume from a checkpoint of the textured bake, without textures and with them.
+  const fs::path baked = dir.path() / "baked";
+  result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", baked.string(), "--no-render",
+                        "--checkpoint-every", "0.25"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  fs::path checkpoint;
+  for (const auto& e : fs::directory_iterator(baked / "small" / "checkpoints")) checkpoint = e.path();
+  ASSERT_FALSE(checkpoint.empty());
+  const fs::path plain = dir.path() / "plain", textured = dir.path() / "textured";
+  result = runRockbake({"resume", checkpoint.string(), "-o", plain.string(), "--no-render", "--no-textures"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_FALSE(fs::exists(plain / "small" / "textures"));
+  result = runRockbake({"resume", checkpoint.string(), "-o", textured.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_TRUE(fs::is_regular_file(textured / "small" / "textures" / "small_ORM.png"));
+}
+
 TEST(TextureBake, BadTextureKeysExitTwoNamingTheKey) {
   TempDir dir;
   writeText(dir.path() / "small.yaml", texturedPreset());
