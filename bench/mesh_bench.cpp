@@ -36,6 +36,7 @@
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/export_meshes.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 
@@ -163,7 +164,7 @@ void BM_MeshStage(benchmark::State& state) {
   int runs = 0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(bakeMeshes(a.rock, a.preset, a.dir));
+    benchmark::DoNotOptimize(exportMeshes(bakeMeshes(a.rock, a.preset), nullptr, a.preset, a.dir));
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++runs;
   }

@@ -1,20 +1,19 @@
 // The texture stage on a real asset (docs/textures.md; figures in bench/README.md).
 //
-//   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--layout shared|own]
+//   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--lod-size halved|full]
 //                          [--out DIR] [--dump] [--no-fidelity]
 //
 // Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
-// stage's functions, keeping the bake source (the refined surface before simplification) and
-// the LODs the current pipeline makes. Then, for each LOD layout (default both): "shared", the
-// LOD chain simplified from LOD0 after its atlas with the seams kept (meshoptimizer, as the
-// mesh stage will), or "own", every LOD of the current pipeline unwrapped on its own; bakes the
-// texture set at 1 and 2 threads (default both; files compared byte for byte) into
-// DIR/<layout>/threads<N>, printing each step's wall and CPU seconds and the memory the set
-// added (peak RSS during it over RSS before). Per LOD it reports the UV targets (texels
-// claimed by two triangles, atlas use, share of the surface within 2x of the median texel
-// density) and, unless --no-fidelity, the normal fidelity: the mean angle between LOD0's
+// stage (bakeMeshes, which hands over the bake source: the refined surface before
+// simplification). Then, for each rule of the LODs' map sizes (`texture.lod_size`, default
+// both): bakes the texture set at 1 and 2 threads (default both; files compared byte for
+// byte) into DIR/<rule>/threads<N>, printing each step's wall and CPU seconds and the memory
+// the set added (peak RSS during it over RSS before). Per LOD it reports the UV targets
+// (texels claimed by two triangles, atlas use, share of the surface within 2x of the median
+// texel density) and, unless --no-fidelity, the normal fidelity: the mean angle between LOD0's
 // normal and the LOD's, geometry alone and decoded from the written PNGs by glTF's rules in
-// this file's own code. --dump writes each LOD's atlas, charts in colours, into DIR/<layout>.
+// this file's own code, and the base colour map's mean absolute difference (linear) from
+// LOD0's vertex colours. --dump writes each LOD's atlas, charts in colours, into DIR/<rule>.
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -36,19 +35,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <meshoptimizer.h>
 #include "core/hash.h"
-#include "core/mesh_checks.h"
 #include "core/png_image.h"
 #include "core/stopwatch.h"
 #include "inputs/resolve_shape.h"
-#include "mesh/bake_attributes.h"
-#include "mesh/extract_surfaces.h"
-#include "mesh/fold_over_repair.h"
-#include "mesh/mesh_defects.h"
-#include "mesh/simplify_lods.h"
-#include "mesh/subdivide.h"
-#include "mesh/surface_detail.h"
+#include "pipeline/bake_meshes.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -69,38 +60,15 @@ struct Asset {
   double voxel_size = 0;
 };
 
-// buildMeshes' recipe (pipeline/bake_meshes.cpp) with the refined surface kept: the bake source.
+// The mesh stage as the bake runs it (pipeline/bake_meshes.h), with its bake source.
 Asset bakeAsset(const Preset& preset) {
   const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(preset), preset), preset).rock;
-  std::shared_ptr<const SmoothedSdf> sdf;
-  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &sdf);
-  const std::vector<float> exposure = exposureField(rock, preset);
-  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  const SubdivideParams levels{preset.mesh.subdivision};
-  meshes.rock = subdivideSurface(meshes.rock, levels);
-  meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
-  const GridLayout& g = rock.layout;
-  projectOntoField(meshes.rock, sdf.get(), g.ground);
-  const double voxel = g.h * g.h * g.h;
-  const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
-  matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
-  sdf = offsetField(sdf, delta, g.ground);
-  projectOntoField(meshes.rock, sdf.get(), g.ground);
-  repairFoldOvers(meshes.rock);
-  repairFoldOvers(meshes.colluvium);
-  const PaletteParams palette = paletteParams(rock, preset.bake);
-  if (preset.mesh.detail)
-    displaceSurface(meshes.rock,
-                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
-  updateBounds(meshes);
-  meshes.durability_range = {palette.durability_min, palette.durability_max};
-  meshes = applyPalette(std::move(meshes), palette);
-  movePivot(meshes, footprintPivot(rock));
+  MeshStageResult meshes = bakeMeshes(rock, preset);
   Asset a;
-  a.voxel_size = g.h;
-  a.source = meshes;
-  a.lods.push_back(simplifyToError(meshes, preset.mesh.max_error * g.h));
-  for (AssetMeshes& lod : simplifyLods(a.lods[0], {preset.mesh.lods})) a.lods.push_back(std::move(lod));
+  a.voxel_size = rock.layout.h;
+  a.source = std::move(meshes.source);
+  a.lods.push_back(std::move(meshes.meshes));
+  for (AssetMeshes& lod : meshes.lods) a.lods.push_back(std::move(lod));
   return a;
 }
 
@@ -167,64 +135,6 @@ void dumpAtlas(const UvAtlas& atlas, const TexelMap& texels, const std::filesyst
   writePngRgb(file, image);
 }
 
-// The LOD chain in LOD0's UV layout, as the mesh stage will make it: each surface of the
-// atlased LOD0 simplified by meshoptimizer to the preset's triangle budgets (shared by the
-// surfaces in proportion, as simplifyLods does), every kept vertex keeping its uv; vertices a
-// seam split share a position, which meshoptimizer keeps together. Normals recomputed and
-// averaged over the copies at one position, so a seam does not show in the shading. (No
-// fold-over repair: that is the mesh stage's.)
-SurfaceMesh simplifyKeepingUvs(const SurfaceMesh& m, std::size_t target) {
-  if (m.triangles.empty()) return m;
-  std::vector<unsigned> indices(3 * m.triangles.size()), out(indices.size());
-  std::memcpy(indices.data(), m.triangles.data(), indices.size() * sizeof(unsigned));
-  const std::size_t n = meshopt_simplify(out.data(), indices.data(), indices.size(), &m.positions[0][0],
-                                         m.positions.size(), sizeof(float) * 3, 3 * target, 1e30f, 0, nullptr);
-  std::vector<std::uint32_t> remap(m.positions.size(), 0xffffffffu), source;
-  SurfaceMesh r;
-  r.name = m.name;
-  for (std::size_t i = 0; i < n; i += 3) {
-    std::array<std::uint32_t, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t& v = remap[out[i + k]];
-      if (v == 0xffffffffu) v = std::uint32_t(source.size()), source.push_back(out[i + k]);
-      t[k] = v;
-    }
-    r.triangles.push_back(t);
-  }
-  const auto carry = [&](const auto& from, auto& to) {
-    to.resize(source.size());
-    for (std::size_t i = 0; i < source.size(); ++i) to[i] = from[source[i]];
-  };
-  carry(m.positions, r.positions), carry(m.uvs, r.uvs), carry(m.durability, r.durability);
-  carry(m.colluvium, r.colluvium), carry(m.curvature, r.curvature), carry(m.altitude, r.altitude);
-  carry(m.colors, r.colors);
-  computeVertexNormals(r);
-  std::map<std::array<float, 3>, std::array<float, 3>> at;
-  for (std::size_t i = 0; i < r.positions.size(); ++i) {
-    auto& sum = at[r.positions[i]];
-    for (int k = 0; k < 3; ++k) sum[k] += r.normals[i][k];
-  }
-  for (std::size_t i = 0; i < r.positions.size(); ++i) {
-    const auto& sum = at[r.positions[i]];
-    const float l = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-    if (l > 0) r.normals[i] = {sum[0] / l, sum[1] / l, sum[2] / l};
-  }
-  return r;
-}
-
-std::vector<AssetMeshes> sharedChain(const AssetMeshes& lod0, const std::vector<double>& targets) {
-  std::vector<AssetMeshes> chain{lod0};
-  const double rock = double(lod0.rock.triangles.size()), colluvium = double(lod0.colluvium.triangles.size());
-  for (double target : targets) {
-    const double ratio = target >= 1.0 ? target / std::max(1.0, rock + colluvium) : target;
-    AssetMeshes lod = lod0;
-    lod.rock = simplifyKeepingUvs(lod0.rock, std::size_t(std::llround(ratio * rock)));
-    lod.colluvium = simplifyKeepingUvs(lod0.colluvium, std::size_t(std::llround(ratio * colluvium)));
-    chain.push_back(std::move(lod));
-  }
-  return chain;
-}
-
 // A 16-bit RGB PNG as written, read with libpng's own API (no gamma handling): the bench
 // decodes normal maps without the baker's code.
 std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& size) {
@@ -247,6 +157,35 @@ std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& siz
   png_destroy_read_struct(&png, &info, nullptr);
   std::fclose(f);
   return pixels;
+}
+
+// An 8-bit RGB PNG as written, with libpng's own API: the base colour map.
+std::vector<std::uint8_t> readPng8(const std::filesystem::path& file, int& size) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) throw std::runtime_error("cannot open " + file.string());
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    throw std::runtime_error("cannot read " + file.string());
+  }
+  png_init_io(png, f);
+  png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  size = int(png_get_image_width(png, info));
+  png_bytepp rows = png_get_rows(png, info);
+  std::vector<std::uint8_t> pixels(std::size_t(size) * std::size_t(size) * 3);
+  for (int y = 0; y < size; ++y)
+    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 3);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(f);
+  return pixels;
+}
+
+// sRGB's transfer function, decoded (IEC 61966-2-1).
+double srgbToLinear(std::uint8_t byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
 using V = std::array<double, 3>;
@@ -307,7 +246,7 @@ Shading shade(const SurfaceMesh& m, std::uint32_t triangle, const double w[3], c
 
 // Over LOD k's covered texels, against LOD0 where the line along LOD k's normal meets it.
 Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map, int size, const AssetMeshes& lod0,
-                  const std::vector<std::uint16_t>& lod0_map, const RaySource& lod0_rays, double reach) {
+                  const std::vector<std::uint16_t>& lod0_map, int lod0_size, const RaySource& lod0_rays, double reach) {
   const TexelMap texels = rasterizeUv(lod, size);
   Fidelity sum;
   std::size_t count = 0;
@@ -328,7 +267,7 @@ Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map,
                                                    {float(n[0]), float(n[1]), float(n[2])}, float(reach));
       if (!hit.hit) continue;
       const double w0[3] = {1.0 - hit.u - hit.v, hit.u, hit.v};
-      const Shading there = shade(ref.surface == 0 ? lod0.rock : lod0.colluvium, hit.triangle, w0, lod0_map, size);
+      const Shading there = shade(ref.surface == 0 ? lod0.rock : lod0.colluvium, hit.triangle, w0, lod0_map, lod0_size);
       sum.geometry += angle(here.geometry, there.geometry);
       sum.mapped += angle(here.decoded, there.geometry);
       sum.both_mapped += angle(here.decoded, there.decoded);
@@ -336,6 +275,43 @@ Fidelity fidelity(const AssetMeshes& lod, const std::vector<std::uint16_t>& map,
     }
   const double n = double(std::max<std::size_t>(count, 1));
   return {sum.geometry / n, sum.mapped / n, sum.both_mapped / n};
+}
+
+// The mean absolute difference, linear RGB averaged over the channels and the LOD's covered
+// texels, between the LOD's base colour map (decoded from the PNG by sRGB's rule) and LOD0's
+// interpolated vertex colours where the line along the LOD's normal meets LOD0.
+double baseColourError(const AssetMeshes& lod, const std::vector<std::uint8_t>& map, int size, const AssetMeshes& lod0,
+                       const RaySource& lod0_rays, double reach) {
+  const TexelMap texels = rasterizeUv(lod, size);
+  double sum = 0;
+  std::size_t count = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(size) + std::size_t(x);
+      if (texels.texels[i] == kEmptyTexel) continue;
+      const TriangleRef ref = triangleRef(lod, texels.texels[i]);
+      const SurfaceMesh& m = ref.surface == 0 ? lod.rock : lod.colluvium;
+      const auto w = texelBarycentrics(m, ref.triangle, x, y, size);
+      V p{0, 0, 0}, n{0, 0, 0};
+      for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = m.triangles[ref.triangle][c];
+          p[k] += w[c] * m.positions[v][k], n[k] += w[c] * m.normals[v][k];
+        }
+      n = unit(n);
+      const SourceHit hit = lod0_rays.nearestAlong(ref.surface, {float(p[0]), float(p[1]), float(p[2])},
+                                                   {float(n[0]), float(n[1]), float(n[2])}, float(reach));
+      if (!hit.hit) continue;
+      const SurfaceMesh& m0 = ref.surface == 0 ? lod0.rock : lod0.colluvium;
+      const double w0[3] = {1.0 - hit.u - hit.v, hit.u, hit.v};
+      for (int k = 0; k < 3; ++k) {
+        double expected = 0;
+        for (int c = 0; c < 3; ++c) expected += w0[c] * m0.colors[m0.triangles[hit.triangle][c]][k];
+        sum += std::abs(srgbToLinear(map[3 * i + std::size_t(k)]) - expected);
+      }
+      ++count;
+    }
+  return sum / double(3 * std::max<std::size_t>(count, 1));
 }
 
 // A /proc/self/status field in MiB ("VmRSS", "VmHWM").
@@ -375,7 +351,7 @@ int main(int argc, char** argv) {
   std::filesystem::path out = std::filesystem::temp_directory_path() / "rockbake-texture-bench";
   bool dump = false;
   std::vector<int> thread_counts{1, 2};
-  std::vector<std::string> layouts{"shared", "own"};
+  std::vector<std::string> rules{"halved", "full"};
   bool fidelity_figures = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -392,8 +368,8 @@ int main(int argc, char** argv) {
       thread_counts = {std::stoi(next())};
     else if (a == "--no-fidelity")
       fidelity_figures = false;
-    else if (a == "--layout")
-      layouts = {next()};
+    else if (a == "--lod-size")
+      rules = {next()};
     else
       preset_file = a;
   }
@@ -420,81 +396,73 @@ int main(int argc, char** argv) {
     std::printf("memory: the bake peaked at %.0f MiB; the source's ray scene alone takes %.0f MiB\n", bake_peak,
                 statusMiB("VmRSS") - before);
   }
-  TextureParams params;
-  params.size = size;
-  params.seed = preset.seed;
-  params.voxel_size = asset.voxel_size;
+  TextureSetRequest request;
+  request.params.size = size;
+  request.seed = preset.seed;
+  request.voxel_size = asset.voxel_size;
+  request.name = preset.name;
 
-  for (const std::string& layout : layouts) {
-    std::printf("\n== %s layout ==\n", layout.c_str());
-    const bool shared = layout == "shared";
+  for (const std::string& rule : rules) {
+    std::printf("\n== lod_size: %s ==\n", rule.c_str());
+    request.params.lod_size = rule == "full" ? LodMapSize::Full : LodMapSize::Halved;
     std::vector<TextureSet> sets;
-    std::vector<AssetMeshes> chain;
     for (int threads : thread_counts) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-      const std::filesystem::path folder = out / layout / ("threads" + std::to_string(threads));
-      std::filesystem::create_directories(folder);
+      request.folder = out / rule / ("threads" + std::to_string(threads));
       malloc_trim(0);  // what the bake freed goes back to the system: the figure counts live memory
       const double rss0 = statusMiB("VmRSS");
       resetPeakMemory();
       clock.lap();
-      double atlas_s = 0, chain_s = 0;
-      if (shared) {
-        const UvAtlas atlas = buildUvAtlas(asset.lods[0], params);
-        atlas_s = clock.lap();
-        std::printf("LOD0 atlas: %zu charts\n", atlas.charts);
-        chain = sharedChain(atlas.meshes, preset.mesh.lods);
-        chain_s = clock.lap();
-      }
       const double cpu0 = cpuSeconds();
-      sets.push_back(bakeTextureSet(shared ? chain : asset.lods, asset.source,
-                                    shared ? LodLayout::SharedWithLod0 : LodLayout::OwnAtlas, params, preset.name,
-                                    folder));
-      const double total = clock.lap() + atlas_s, cpu = cpuSeconds() - cpu0;
+      sets.push_back(bakeTextureSet(asset.lods, asset.source, request));
+      const double total = clock.lap(), cpu = cpuSeconds() - cpu0;
       std::printf(
           "memory: %.0f MiB live before the texture set, peak %.0f MiB during it (+%.0f MiB); the whole "
           "run's peak %.0f MiB over the bake's %.0f MiB\n",
           rss0, statusMiB("VmHWM"), statusMiB("VmHWM") - rss0, std::max(bake_peak, statusMiB("VmHWM")), bake_peak);
-      std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU)%s, %zu texels missed the source\n", threads,
-                  total, cpu,
-                  shared ? (" (LOD0 atlas " + std::to_string(atlas_s) + " s; the chain's simplification, " +
-                            std::to_string(chain_s) + " s, not counted)")
-                               .c_str()
-                         : "",
-                  sets.back().missed);
+      std::uintmax_t bytes = 0;
+      for (const TextureFile& f : sets.back().files) bytes += std::filesystem::file_size(request.folder / f.file);
+      std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU), %zu files, %.1f MB, %zu texels missed\n",
+                  threads, total, cpu, sets.back().files.size(), 1e-6 * double(bytes), sets.back().missed);
       for (const TextureSet::Step& step : sets.back().steps)
         std::printf("  %-18s %7.3f s (CPU %.3f s)\n", step.name.c_str(), step.seconds, step.cpu_seconds);
     }
     if (sets.size() == 2) {
       bool same = true;
       for (const TextureFile& f : sets[0].files)
-        same &= readAll(out / layout / "threads1" / f.file) == readAll(out / layout / "threads2" / f.file);
+        same &= readAll(out / rule / "threads1" / f.file) == readAll(out / rule / "threads2" / f.file);
       std::printf("files at 1 and 2 threads: %s\n", same ? "byte-identical" : "DIFFERENT");
     }
     const TextureSet& set = sets.back();
-    const std::filesystem::path last = out / layout / ("threads" + std::to_string(thread_counts.back()));
+    const std::filesystem::path last = out / rule / ("threads" + std::to_string(thread_counts.back()));
     const RaySource lod0_rays(set.lods[0]);
     int lod0_size = 0;
     const auto lod0_map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, 0), lod0_size);
     for (std::size_t k = 0; k < set.lods.size(); ++k) {
-      const TexelMap texels = rasterizeUv(set.lods[k], size);
+      const TexelMap texels = rasterizeUv(set.lods[k], set.sizes[k]);
       UvAtlas atlas;
       atlas.meshes = set.lods[k];
       const UvFigures f = uvFigures(atlas, texels);
       int map_size = 0;
       const auto map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
-      const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_rays,
-                                                       0.1 * lod0_rays.radius())
+      int colour_size = 0;
+      const auto colour =
+          readPng8(last / textureFileName(preset.name, TextureMap::BaseColor, k == 0 ? -1 : int(k)), colour_size);
+      const double colour_error =
+          baseColourError(set.lods[k], colour, colour_size, set.lods[0], lod0_rays, 0.1 * lod0_rays.radius());
+      const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_size,
+                                                       lod0_rays, 0.1 * lod0_rays.radius())
                                             : Fidelity{};
       std::printf(
           "LOD%zu: %zu triangles (target %s), %.0f texels/unit; contested %.3f %%, use %.1f %%, within 2x of "
           "median density %.1f %%; normal vs LOD0: geometry %.2f°, map %.2f° (%.2f x), both with maps %.2f° "
-          "(%.2f x)\n",
+          "(%.2f x); base colour vs LOD0's vertex colours %.4f (linear, mean absolute)\n",
           k, set.lods[k].rock.triangles.size() + set.lods[k].colluvium.triangles.size(),
           k == 0 ? "-" : std::to_string(int(preset.mesh.lods[k - 1])).c_str(), set.texels_per_unit[k],
           100 * f.contested, 100 * f.use, 100 * f.within_twice_median, fid.geometry, fid.mapped,
-          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9));
-      if (dump) dumpAtlas(atlas, texels, out / layout / ("atlas_lod" + std::to_string(k) + ".png"));
+          fid.mapped / std::max(fid.geometry, 1e-9), fid.both_mapped, fid.both_mapped / std::max(fid.geometry, 1e-9),
+          colour_error);
+      if (dump) dumpAtlas(atlas, texels, out / rule / ("atlas_lod" + std::to_string(k) + ".png"));
     }
   }
   return 0;

@@ -6,9 +6,13 @@ global_settings { assumed_gamma 1.0 max_trace_level 5 }
 #declare Center = {{ASSET_CENTER}};
 #declare Radius = {{ASSET_RADIUS}};
 
-// The rock look (lengths follow the asset's size, patterns sampled at a seeded
-// offset): colour varied within each layer at two scales, a bump at two
-// scales (weathered wrinkles and sand grain), granular colluvium.
+// The rock's texture set, where the bake made one: LOD0 with its base colour
+// through its uvs and its height as a bump, as an engine gets it.
+#declare Rockbake_Use_Maps = 1;
+// Without one, the rock look made here (lengths follow the asset's size,
+// patterns sampled at a seeded offset): colour varied within each layer at two
+// scales, a bump at two scales (weathered wrinkles and sand grain), granular
+// colluvium.
 #declare Rockbake_Offset = {{SEED_OFFSET}};
 #declare Rockbake_Finish = finish { ambient 0 diffuse 0.85 specular 0.03 roughness 0.08 }
 #declare Rockbake_Dark = 0.78;

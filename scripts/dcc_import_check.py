@@ -8,7 +8,14 @@ colluvium.ply (each in a fresh scene), and checks, per object, what
 README.md promises: the node names, the pivot (footprint centre on the
 ground, z up in Blender whatever the file's up axis), closed surfaces,
 triangle counts against asset.json, and the colour attributes (glTF's
-COLOR_0 and the packed mask COLOR_1). Prints what each importer gives and
+COLOR_0 and the packed mask COLOR_1). With a texture set (asset.json's
+"maps", docs/textures.md) every LOD's material must arrive image-textured:
+its base colour map into the Principled BSDF's Base Color, its normal map
+through a Normal Map node, its ORM map's G into Roughness and its R into the
+importer's occlusion output; the glTF files are imported with their
+vertices merged (a UV seam splits them in the file) so that the surfaces are
+checked closed. The OBJ's material must bring its base colour and normal
+maps. Prints what each importer gives and
 exits 1 if any check failed, listing them; zero-area and folded triangles
 are counted and shown but do not fail (the bake already warns about the few
 it keeps).
@@ -29,6 +36,7 @@ if "bool" not in numpy.__dict__:
 
 folder = sys.argv[sys.argv.index("--") + 1] if "--" in sys.argv else "."
 asset = json.load(open(os.path.join(folder, "asset.json")))
+maps = asset.get("maps", [])  # the texture set; empty: vertex colours only
 size = [s * asset["units_per_meter"] for s in asset["size_m"]]  # back to world units
 failures = []
 
@@ -89,6 +97,56 @@ def inspect(obj):
     return tris
 
 
+def images_into(socket, seen=None):
+    """The file names of the images whose texture nodes feed `socket`, through any nodes between."""
+    seen = set() if seen is None else seen
+    names = set()
+    for link in socket.links:
+        node = link.from_node
+        if node in seen:
+            continue
+        seen.add(node)
+        if node.type == "TEX_IMAGE" and node.image is not None:
+            names.add(os.path.basename(node.image.filepath))
+        for s in node.inputs:
+            names |= images_into(s, seen)
+    return names
+
+
+def map_file(kind, level):
+    files = [m["file"] for m in maps if m["type"] == kind and m["lod"] == level]
+    return os.path.basename(files[0]) if files else None
+
+
+def check_material(obj, level, orm=True):
+    """The object's material brings LOD `level`'s maps, wired as an engine reads them."""
+    material = obj.active_material
+    if check(material is not None and material.use_nodes, f"{obj.name}: no node material") != "ok":
+        return
+    nodes = material.node_tree.nodes
+    bsdf = next((n for n in nodes if n.type == "BSDF_PRINCIPLED"), None)
+    if check(bsdf is not None, f"{obj.name}: no Principled BSDF") != "ok":
+        return
+    wired = {"base colour": (images_into(bsdf.inputs["Base Color"]), map_file("base_color", level)),
+             "normal": (images_into(bsdf.inputs["Normal"]), map_file("normal", level))}
+    normal_map = [l.from_node.type for l in bsdf.inputs["Normal"].links]
+    check(normal_map == ["NORMAL_MAP"], f"{obj.name}: the normal map does not go through a Normal Map node")
+    if orm:
+        wired["roughness (ORM)"] = (images_into(bsdf.inputs["Roughness"]), map_file("orm", level))
+        # Blender keeps glTF's occlusion in a group node of its own (Cycles and EEVEE ignore it;
+        # it is there for the round trip back to glTF).
+        occlusion = set()
+        for n in nodes:
+            if n.type == "GROUP" and "Occlusion" in n.inputs:
+                occlusion |= images_into(n.inputs["Occlusion"])
+        wired["occlusion (ORM)"] = (occlusion, map_file("orm", level))
+    for what, (got, want) in wired.items():
+        check(want is not None and want in got, f"{obj.name}: {what} map {want} not wired (got {sorted(got)})")
+    print(f"    material {material.name}: " +
+          "; ".join(f"{what} {'ok' if want in got else 'FAIL'} ({', '.join(sorted(got)) or 'none'})"
+                    for what, (got, want) in wired.items()))
+
+
 def check_asset(objs, label, triangles, pivot=True):
     """Size and pivot of what one file (or one LOD) holds, taken together."""
     lo, hi = world_bbox(objs)
@@ -115,7 +173,8 @@ def check_asset(objs, label, triangles, pivot=True):
 print(f"== glTF: {', '.join(l['file'] for l in asset['lods'])} in one scene")
 fresh_scene()
 for lod in asset["lods"]:
-    bpy.ops.import_scene.gltf(filepath=os.path.join(folder, lod["file"]))
+    # A textured LOD's vertices are split along its UV seams; merged, its surfaces are closed again.
+    bpy.ops.import_scene.gltf(filepath=os.path.join(folder, lod["file"]), merge_vertices=bool(maps))
 names = sorted(o.name for o in bpy.data.objects)
 expected = sorted(f"{s}_lod{l['level']}" for l in asset["lods"] for s in ("rock", "colluvium"))
 print(f"  names: {check(names == expected, f'glTF names {names}, expected {expected}')} ({' '.join(names)})")
@@ -123,13 +182,19 @@ for lod in asset["lods"]:
     objs = [bpy.data.objects[n] for n in (f"rock_lod{lod['level']}", f"colluvium_lod{lod['level']}") if n in names]
     check_asset(objs, f"LOD{lod['level']} ({lod['file']})", lod["triangles"], pivot=lod["level"] == 0)
     for o in objs:
-        # COLOR_0 and COLOR_1 arrive as the first two colour attributes; the
-        # mask's G is colluvium coverage, 1 all over the colluvium surface.
+        # COLOR_0 and COLOR_1 arrive as the first two colour attributes (COLOR_0 white with a
+        # base colour map, which glTF multiplies by it); the mask's G is colluvium coverage, 1 all
+        # over the colluvium surface.
         colours = o.data.color_attributes
         if check(len(colours) >= 2, f"{o.name}: COLOR_0 and COLOR_1 not both imported") == "ok":
             mask = rgba(colours[1])
+            if maps:
+                check(rgba(colours[0])[:, :3].min() > 0.999, f"{o.name}: COLOR_0 is not white beside the maps")
             if o.name.startswith("colluvium"):
-                check(mask[:, 1].min() > 0.99, f"{o.name}: COLOR_1's G is not 1 on the colluvium surface")
+                check(mask[:, 1].min() > 0.99, f"{o.name}: the mask's G is not 1 on the colluvium surface")
+        if maps:
+            check(len(o.data.uv_layers) >= 1, f"{o.name}: no UV map")
+            check_material(o, lod["level"])
 lod0 = asset["lods"][0]["triangles"]
 
 if os.path.exists(os.path.join(folder, "rock.obj")):  # OBJ is exported on request only
@@ -139,6 +204,10 @@ if os.path.exists(os.path.join(folder, "rock.obj")):  # OBJ is exported on reque
     objs = mesh_objects()
     print(f"  names: {' '.join(o.name for o in objs)}")
     check_asset(objs, "rock.obj", lod0)
+    if maps:
+        for o in objs:
+            check(len(o.data.uv_layers) >= 1, f"{o.name} (OBJ): no UV map")
+            check_material(o, 0, orm=False)
 else:
     print("== OBJ: no rock.obj (add obj to the preset's export: list to check it)")
 

@@ -97,15 +97,18 @@ void addResolution(CLI::App* command, std::optional<int>& resolution, const std:
   command->add_option("--resolution", resolution, help)->check(kResolutionRange);
 }
 
-// What a bake writes: --no-mesh, --no-render.
+// What a bake writes: --no-mesh, --no-render, --no-textures.
 struct StageSwitches {
   bool no_mesh = false;
   bool no_render = false;
+  bool no_textures = false;
 };
 
 void addStageSwitches(CLI::App* command, StageSwitches& switches) {
   command->add_flag("--no-mesh", switches.no_mesh, "Skip meshing (and so rendering)");
   command->add_flag("--no-render", switches.no_render, "Skip rendering");
+  command->add_flag("--no-textures", switches.no_textures,
+                    "Skip the texture set: the preset's texture: block is dropped (meshes with vertex colours only)");
 }
 
 void addCheckpointEvery(CLI::App* command, double& every, const std::string& help) {
@@ -152,6 +155,7 @@ LoadedPresets loadPresetsToBake(const BakeArgs& args, const rockbake::PresetOver
   for (const auto& file : args.presets) {
     const auto start = std::chrono::steady_clock::now();
     loaded.presets.push_back(rockbake::loadPreset(file, overrides));
+    if (args.switches.no_textures) loaded.presets.back().texture.reset();
     loaded.shapes.push_back(rockbake::readInputs(loaded.presets.back()));
     loaded.load_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -230,7 +234,8 @@ CLI::App* declareResume(CLI::App& app, ResumeArgs& args) {
 int runResume(const ResumeArgs& args) {
   const auto thread_limit = limitThreads(args.threads);
   const rockbake::Checkpoint checkpoint = rockbake::readCheckpoint(args.checkpoint);
-  const rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
+  rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
+  if (args.switches.no_textures) plan.preset.texture.reset();
   rockbake::BakeOptions options;
   options.out_dir = args.out_dir;
   options.mesh = !args.switches.no_mesh;
@@ -471,6 +476,7 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   options.resolution = args.resolution;
   options.mesh = !args.switches.no_mesh;
   options.render = !args.switches.no_render && !args.switches.no_mesh;
+  options.textures = !args.switches.no_textures;
   options.cancel = &library_interrupted;
   rockbake::LibraryProgress progress(jobs.size(), std::max(1, args.jobs), ::isatty(STDERR_FILENO) == 1,
                                      &library_interrupted);

@@ -33,7 +33,10 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
   a.bufferView = addView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   a.count = values.size() / std::size_t(components);
-  a.type = components == 1 ? TINYGLTF_TYPE_SCALAR : components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3;
+  a.type = components == 1   ? TINYGLTF_TYPE_SCALAR
+           : components == 2 ? TINYGLTF_TYPE_VEC2
+           : components == 4 ? TINYGLTF_TYPE_VEC4
+                             : TINYGLTF_TYPE_VEC3;
   if (bounds) {
     a.minValues.assign(std::size_t(components), std::numeric_limits<double>::max());
     a.maxValues.assign(std::size_t(components), std::numeric_limits<double>::lowest());
@@ -47,11 +50,47 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
   return int(model.accessors.size() - 1);
 }
 
-void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod) {
+// The texture set's images, each once, and a texture for each (trilinear, clamped: an atlas's
+// charts end in gutters, not in a repeat). Returns the texture index per map, -1 where none.
+struct MapTextures {
+  int base_color = -1, normal = -1, orm = -1;
+};
+MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps) {
+  MapTextures t;
+  if (maps.base_color.empty() && maps.normal.empty() && maps.orm.empty()) return t;
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  model.samplers.push_back(sampler);
+  const auto add = [&](const std::string& uri) {
+    if (uri.empty()) return -1;
+    tinygltf::Image image;
+    image.uri = uri;
+    image.mimeType = "image/png";
+    model.images.push_back(image);
+    tinygltf::Texture texture;
+    texture.source = int(model.images.size() - 1);
+    texture.sampler = int(model.samplers.size() - 1);
+    model.textures.push_back(texture);
+    return int(model.textures.size() - 1);
+  };
+  t.base_color = add(maps.base_color);
+  t.normal = add(maps.normal);
+  t.orm = add(maps.orm);
+  return t;
+}
+
+void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod,
+                const MapTextures& maps) {
   const std::size_t n = m.positions.size();
   if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
       m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
     throw std::runtime_error("the " + m.name + " mesh lacks normals, colours or attributes, or has quads");
+  const bool textured = maps.base_color >= 0 || maps.normal >= 0 || maps.orm >= 0;
+  if (textured && (m.uvs.size() != n || m.tangents.size() != n))
+    throw std::runtime_error("the " + m.name + " mesh has maps but no uvs or tangents");
   std::vector<float> positions, normals, colors, mask;
   positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n), mask.reserve(4 * n);
   const float d_lo = durability_range[0], d_span = durability_range[1] - durability_range[0];
@@ -61,7 +100,12 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
     const auto& q = m.normals[i];
     positions.insert(positions.end(), {p[0], p[2], -p[1]});  // z-up → y-up
     normals.insert(normals.end(), {q[0], q[2], -q[1]});
-    colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
+    // With a base-colour map COLOR_0 is white: glTF multiplies it into the map, and it must be
+    // there for COLOR_1 (the mask) to be a valid set.
+    if (maps.base_color >= 0)
+      colors.insert(colors.end(), {1.0f, 1.0f, 1.0f});
+    else
+      colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
     // The packed mask every DCC reads as a second colour set.
     const float durability = m.durability[i] <= 0.0f ? 0.0f : d_span > 0 ? (m.durability[i] - d_lo) / d_span : 0.5f;
     mask.insert(mask.end(), {unit(durability), unit(m.colluvium[i]), unit(m.curvature[i]), unit(m.altitude[i])});
@@ -70,6 +114,18 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.attributes["POSITION"] = addFloatAccessor(model, positions, 3, true);
   prim.attributes["NORMAL"] = addFloatAccessor(model, normals, 3, false);
+  if (textured) {
+    std::vector<float> uvs, tangents;
+    uvs.reserve(2 * n), tangents.reserve(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& t = m.tangents[i];
+      uvs.insert(uvs.end(), m.uvs[i].begin(), m.uvs[i].end());
+      // The same rotation as the normals; a rotation keeps the frame's handedness, so w stays.
+      tangents.insert(tangents.end(), {t[0], t[2], -t[1], t[3]});
+    }
+    prim.attributes["TEXCOORD_0"] = addFloatAccessor(model, uvs, 2, false);
+    prim.attributes["TANGENT"] = addFloatAccessor(model, tangents, 4, false);
+  }
   prim.attributes["COLOR_0"] = addFloatAccessor(model, colors, 3, false);
   prim.attributes["COLOR_1"] = addFloatAccessor(model, mask, 4, false);
   prim.attributes["_DURABILITY"] = addFloatAccessor(model, m.durability, 1, false);
@@ -89,8 +145,16 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   tinygltf::Material material;
   material.name = m.name;
   material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
-  material.pbrMetallicRoughness.metallicFactor = 0.0;
-  material.pbrMetallicRoughness.roughnessFactor = 0.9;
+  if (maps.orm >= 0) {
+    // The map holds both: factors of 1 read it as it is (its B, metal, is 0).
+    material.pbrMetallicRoughness.metallicRoughnessTexture.index = maps.orm;
+    material.occlusionTexture.index = maps.orm;
+  } else {
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.9;
+  }
+  if (maps.base_color >= 0) material.pbrMetallicRoughness.baseColorTexture.index = maps.base_color;
+  if (maps.normal >= 0) material.normalTexture.index = maps.normal;
   model.materials.push_back(material);
   prim.material = int(model.materials.size() - 1);
 
@@ -112,7 +176,7 @@ std::string glbMeshName(const std::string& surface, int lod) {
   return surface + "_lod" + std::to_string(lod);
 }
 
-void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod) {
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod, const MaterialMaps& maps) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "rockbake " ROCKBAKE_VERSION;
@@ -120,13 +184,15 @@ void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int 
   model.scenes.resize(1);
   model.defaultScene = 0;
   try {
+    const MapTextures textures = addMapTextures(model, maps);
     for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
-      if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod);
+      if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod, textures);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }
   writeFileAtomically(file, [&](std::ostream& os) {
     tinygltf::TinyGLTF gltf;
+    gltf.SetImageWriter(nullptr, nullptr);  // images stay files beside the GLB, named by their URIs
     if (!gltf.WriteGltfSceneToStream(&model, os, false, true))
       throw std::runtime_error(file.string() + ": tinygltf could not write the scene");
   });

@@ -12,6 +12,15 @@
 // importers that drop custom attributes.
 // glTF is y-up: the asset's z-up world (x, y, z) is written as (x, z, -y),
 // in the same units (metres to glTF readers).
+//
+// Textured (docs/textures.md): a surface with uvs and tangents also gets
+// TEXCOORD_0 and TANGENT (xyzw, handedness in w: the frames the maps were
+// baked in), and its material (one per surface, named after it) the texture
+// set's maps by relative URI: baseColorTexture, normalTexture,
+// occlusionTexture and metallicRoughnessTexture (the one ORM image: R
+// occlusion, G roughness, B metal), trilinear, clamped at the edges. With a
+// base-colour map COLOR_0 is white: glTF multiplies it into the map (and
+// COLOR_1, the mask, is valid only beside a COLOR_0).
 #pragma once
 
 #include <filesystem>
@@ -25,9 +34,20 @@ namespace rockbake {
 // "rock_lod0". Engines pair other files' nodes with it (collision_glb.h).
 std::string glbMeshName(const std::string& surface, int lod);
 
+// A LOD's maps, as URIs relative to the file that names them ("textures/goblin_ORM.png");
+// empty: that map is not there. Both surfaces share them (one atlas).
+struct MaterialMaps {
+  std::string base_color;  // 8-bit sRGB
+  std::string normal;      // tangent space, OpenGL convention (+Y)
+  std::string orm;         // linear: R occlusion, G roughness, B metal
+  std::string height;      // film displacement, world units (the OBJ's MTL names it)
+  bool empty() const { return base_color.empty() && normal.empty() && orm.empty() && height.empty(); }
+};
+
 // Throws std::runtime_error on failure.
 // `lod` names the nodes and meshes: rock_lod0, colluvium_lod0, … (so LODs
-// imported into one scene keep their names).
-void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod = 0);
+// imported into one scene keep their names). `maps`: the LOD's texture set
+// (the meshes must then have uvs and tangents).
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod = 0, const MaterialMaps& maps = {});
 
 }  // namespace rockbake

@@ -73,12 +73,30 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   nlohmann::ordered_json lods = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i < asset.lods.size(); ++i) {
     const AssetMeshes& m = *asset.lods[i].meshes;
-    lods.push_back({{"level", i},
-                    {"file", asset.lods[i].file},
-                    {"triangles", m.rock.triangles.size() + m.colluvium.triangles.size()},
-                    {"vertices", m.rock.positions.size() + m.colluvium.positions.size()}});
+    nlohmann::ordered_json lod = {{"level", i},
+                                  {"file", asset.lods[i].file},
+                                  {"triangles", m.rock.triangles.size() + m.colluvium.triangles.size()},
+                                  {"vertices", m.rock.positions.size() + m.colluvium.positions.size()}};
+    if (asset.lods[i].map_size > 0) {
+      lod["map_size"] = asset.lods[i].map_size;
+      // Pixels per metre, as a Megascans payload gives it: texels per world unit times world units per metre.
+      lod["texel_density"] = std::round(10 * asset.lods[i].texels_per_unit * asset.units_per_meter) / 10;
+    }
+    lods.push_back(lod);
   }
   j["lods"] = lods;
+  if (!asset.maps.empty()) {
+    nlohmann::ordered_json maps = nlohmann::ordered_json::array();
+    for (const AssetMap& m : asset.maps)
+      maps.push_back({{"type", m.type},
+                      {"lod", m.lod},
+                      {"file", m.file},
+                      {"size", {m.size, m.size}},
+                      {"colour_space", m.colour_space},
+                      {"channels", m.channels},
+                      {"bits", m.bits}});
+    j["maps"] = maps;
+  }
   const std::array<double, 3> linear = averageColor(lod0);
   const auto byte = [](double c) {
     return int(std::lround(std::clamp(double(linearToSrgb(float(c))), 0.0, 1.0) * 255));

@@ -5,6 +5,9 @@
 //    "units_per_meter", "size_m": [x, y, z],              // the bounding box in metres
 //    "pivot": "footprint-centre-on-ground", "up_axis": "z" (PLY, VDB) / "y" (GLB, OBJ),
 //    "lods": [{"level", "file", "triangles", "vertices"}, ..],   // level 0 first; both surfaces counted
+//    with a texture set (docs/textures.md), each LOD also "map_size" (texels) and
+//    "texel_density" (pixels per metre), and
+//    "maps": [{"type", "lod", "file", "size": [w, h], "colour_space", "channels", "bits"}, ..],
 //    "average_color": {"srgb": "#rrggbb", "linear": [r, g, b]},  // area-weighted over LOD0
 //    "preview": "render.png" | null,
 //    "collision": {"file": "collision.glb", "naming": "unreal" | "godot", "hull_count", "vertex_count",
@@ -46,6 +49,19 @@ struct AssetCollision {
 struct AssetLod {
   std::string file;  // relative to the asset folder
   const AssetMeshes* meshes = nullptr;
+  int map_size = 0;            // its maps' width and height, texels; 0: no texture set
+  double texels_per_unit = 0;  // its atlas's texel density, texels per world unit
+};
+
+// One file of the texture set.
+struct AssetMap {
+  std::string type;  // "base_color", "normal", "orm", "height", "mask"
+  int lod = 0;
+  std::string file;          // relative to the asset folder
+  int size = 0;              // width and height, texels
+  std::string colour_space;  // "srgb" or "linear"
+  std::string channels;      // "RGB", "RGBA" or "Y"
+  int bits = 0;              // per channel: 8, 16, or 32 (float)
 };
 
 struct AssetDescription {
@@ -53,6 +69,7 @@ struct AssetDescription {
   std::vector<std::string> tags;
   double units_per_meter = 1.0;
   std::vector<AssetLod> lods;  // level 0 first
+  std::vector<AssetMap> maps;  // empty: no texture set
   std::string preview;         // relative path, empty: none
   std::string input_hash;
   std::optional<AssetCollision> collision;  // none: export does not list collision

@@ -19,6 +19,7 @@
 #include "pipeline/bake_collision.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
+#include "pipeline/export_meshes.h"
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
@@ -215,28 +216,63 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   return weathered;
 }
 
-// The meshes and their files, then rock.vdb (its rock_sdf the field the meshes came from); with --no-mesh,
-// rock.vdb alone, with the occupancy.
-std::optional<MeshStageResult> meshAndExport(Bake& bake, const Weathered& weathered) {
+// The meshes in memory: LOD0, the LOD chain and the bake source (pipeline/bake_meshes.h); none with --no-mesh.
+std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered) {
   bake.checkCancel();
-  if (!bake.options.mesh) {
-    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb");
-    bake.timings.write_vdb = bake.clock.lap();
-    return std::nullopt;
-  }
+  if (!bake.options.mesh) return std::nullopt;
   bake.progress(0.7, "mesh");
-  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing, bake.dir());
-  bake.timings.mesh = MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds,
-                                  meshes.simplify_seconds, meshes.export_seconds};
+  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing);
+  bake.timings.mesh =
+      MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds, meshes.simplify_seconds};
   bake.clock.lap();
-  if (exportsFormat(bake.preset, "vdb")) {
-    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes.rock_sdf.get());
-    bake.timings.write_vdb = bake.clock.lap();
-  }
   return meshes;
 }
 
-void render(Bake& bake, const std::optional<MeshStageResult>& meshes) {
+// The texture set in OUT/<name>/textures/ (docs/textures.md): every LOD unwrapped, its tangent frames, its maps
+// baked from the bake source, which is dropped here, used or not (it is the largest thing the meshes hold).
+std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::optional<MeshStageResult>& meshes) {
+  if (!meshes) return std::nullopt;
+  const AssetMeshes source = std::move(meshes->source);
+  meshes->source = AssetMeshes{};
+  const Preset& preset = bake.preset;
+  if (!preset.texture) return std::nullopt;
+  bake.checkCancel();
+  bake.progress(0.75, "texture");
+  TextureSetRequest request;
+  request.params = *preset.texture;
+  request.seed = preset.seed;
+  request.voxel_size = weathered.rock.layout.h;
+  request.varied = preset.bake.palette == Palette::Natural;  // the debug and curvature palettes are data
+  request.name = preset.name;
+  request.folder = bake.dir() / kTextureFolder;
+  std::vector<AssetMeshes> lods{meshes->meshes};
+  lods.insert(lods.end(), meshes->lods.begin(), meshes->lods.end());
+  TextureSet set = bakeTextureSet(lods, source, request);
+  bake.timings.texture = bake.clock.lap();
+  if (set.missed > 0) spdlog::debug("{}: {} texels found no bake source within the cage", preset.name, set.missed);
+  return set;
+}
+
+// The mesh files, then rock.vdb (its rock_sdf the field the meshes came from); with --no-mesh, rock.vdb
+// alone, with the occupancy.
+void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<MeshStageResult>& meshes,
+                 const std::optional<TextureSet>& textures) {
+  bake.checkCancel();
+  if (!meshes) {
+    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb");
+    bake.timings.write_vdb = bake.clock.lap();
+    return;
+  }
+  bake.progress(0.8, "export");
+  bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+  bake.clock.lap();
+  if (exportsFormat(bake.preset, "vdb")) {
+    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
+    bake.timings.write_vdb = bake.clock.lap();
+  }
+}
+
+void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures) {
   if (!meshes || !bake.options.render) return;
   bake.checkCancel();
   bake.progress(0.85, "render");
@@ -248,7 +284,11 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes) {
   request.preset_hash = presetFingerprint(bake.preset, bake.options.manifest);
   request.threads = bake.options.render_threads;
   request.cancel = bake.options.cancel;
-  const RenderOutputs rendered = renderAsset(meshes->meshes, request);
+  if (textures) {
+    const MaterialMaps maps = lodMaterialMaps(*textures, 0);
+    request.maps = {maps.base_color, maps.height, textures->texels_per_unit.at(0)};
+  }
+  const RenderOutputs rendered = renderAsset(textures ? textures->lods.at(0) : meshes->meshes, request);
   bake.timings.render = rendered.seconds_total;
   spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
                (bake.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
@@ -267,8 +307,9 @@ std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered,
   return collision;
 }
 
-// asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only.
-void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes,
+// asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only; the LODs as shipped (split
+// along their UV seams when there is a texture set), the maps and the collision hulls.
+void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
               const std::optional<AssetCollision>& collision) {
   if (!meshes) return;
   const Preset& preset = bake.preset;
@@ -276,9 +317,22 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes,
   asset.name = preset.name;
   asset.tags = preset.tags;
   asset.units_per_meter = preset.units_per_meter;
-  asset.lods.push_back({meshes->lod_files.at(0), &meshes->meshes});
-  for (std::size_t i = 0; i < meshes->lods.size(); ++i)
-    asset.lods.push_back({meshes->lod_files.at(i + 1), &meshes->lods[i]});
+  for (std::size_t i = 0; i <= meshes->lods.size(); ++i) {
+    AssetLod lod{meshes->lod_files.at(i), i == 0 ? &meshes->meshes : &meshes->lods[i - 1]};
+    if (textures) {
+      lod.meshes = &textures->lods.at(i);
+      lod.map_size = textures->sizes.at(i);
+      lod.texels_per_unit = textures->texels_per_unit.at(i);
+    }
+    asset.lods.push_back(lod);
+  }
+  if (textures)
+    for (const TextureFile& f : textures->files)
+      asset.maps.push_back({mapName(f.map), f.lod, std::string(kTextureFolder) + "/" + f.file, f.size, f.colour_space,
+                            f.channels == 1   ? "Y"
+                            : f.channels == 3 ? "RGB"
+                                              : "RGBA",
+                            f.bits});
   asset.preview = bake.options.render ? "render.png" : "";
   const ManifestInputs& inputs = bake.options.manifest;
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
@@ -327,10 +381,12 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   Bake bake(preset, options);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
-  const std::optional<MeshStageResult> meshes = meshAndExport(bake, weathered);
+  std::optional<MeshStageResult> meshes = mesh(bake, weathered);
+  const std::optional<TextureSet> textures = texture(bake, weathered, meshes);
+  exportFiles(bake, weathered, meshes, textures);
   const std::optional<AssetCollision> collision = collide(bake, weathered, meshes);
-  render(bake, meshes);
-  describe(bake, meshes, collision);
+  render(bake, meshes, textures);
+  describe(bake, meshes, textures, collision);
   writeStats(bake, weathered);
   writeManifestLast(bake, weathered);
   return commit(bake, weathered);

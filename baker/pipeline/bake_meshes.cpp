@@ -9,11 +9,7 @@
 #include <string>
 
 #include <spdlog/spdlog.h>
-#include <tbb/task_group.h>
 
-#include "export/glb_file.h"
-#include "export/obj_file.h"
-#include "export/ply_file.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/fold_over_repair.h"
@@ -71,6 +67,7 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
 
   r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
   r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h);
+  r.source = std::move(meshes);
   r.simplify_seconds = clock.lap();
   spdlog::debug("{}: refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, {} triangles",
                 preset.name, r.refined_triangles, r.meshes.rock.positions.size(), r.meshes.rock.triangles.size(),
@@ -78,45 +75,15 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   return r;
 }
 
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir) {
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset) {
   MeshStageResult r = buildMeshes(rock, preset);
-  const AssetMeshes& meshes = r.meshes;
-  const Stopwatch export_clock;
   if (exportsFormat(preset, "glb")) {
     Stopwatch clock;
-    r.lods = simplifyLods(meshes, {preset.mesh.lods});
+    r.lods = simplifyLods(r.meshes, {preset.mesh.lods});
     r.simplify_seconds += clock.lap();
   }
   r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");
   for (std::size_t i = 0; i < r.lods.size(); ++i) r.lod_files.push_back("rock_lod" + std::to_string(i + 1) + ".glb");
-
-  // The files are independent: write them concurrently, so one file's
-  // formatting overlaps another's disk writes and fsync.
-  const auto timed = [&](const char* what, auto&& write) {
-    return [&, what, write] {
-      Stopwatch clock;
-      write();
-      spdlog::debug("{}: {} in {:.3f} s", preset.name, what, clock.lap());
-    };
-  };
-  tbb::task_group exports;
-  if (exportsFormat(preset, "ply")) {
-    exports.run(timed("rock.ply", [&] { writePly(meshes.rock, asset_dir / "rock.ply"); }));
-    if (!meshes.colluvium.positions.empty()) {
-      exports.run(timed("colluvium.ply", [&] { writePly(meshes.colluvium, asset_dir / "colluvium.ply"); }));
-    } else {
-      std::error_code ignored;  // no colluvium: no stale file from an earlier bake either
-      std::filesystem::remove(asset_dir / "colluvium.ply", ignored);
-    }
-  }
-  if (exportsFormat(preset, "obj")) exports.run(timed("obj", [&] { writeObj(meshes, asset_dir / "rock.obj"); }));
-  if (exportsFormat(preset, "glb")) {
-    exports.run(timed("glb", [&] { writeGlb(meshes, asset_dir / "rock.glb", 0); }));
-    for (std::size_t i = 0; i < r.lods.size(); ++i)
-      exports.run(timed("lod", [&, i] { writeGlb(r.lods[i], asset_dir / r.lod_files[i + 1], int(i + 1)); }));
-  }
-  exports.wait();  // rethrows the first failure
-  r.export_seconds = export_clock.elapsed();
   return r;
 }
 

@@ -1,15 +1,15 @@
 // The mesh stage of the recipe (docs/meshes.md): final grid ─▶ surfaces ─▶ attributes
 // ─▶ subdivision ─▶ volume matched to the voxels ─▶ surface detail ─▶ palette
-// ─▶ pivot ─▶ LOD0 (simplified to mesh.max_error) ─▶ files in the asset folder,
-// as the preset's `export:` list asks, every mesh file holding LOD0:
-//   ply  rock.ply, colluvium.ply (one surface each; colluvium only if any)
-//   obj  rock.obj + rock.mtl (both surfaces, one object each, y up)
-//   glb  rock.glb (both surfaces, one node each: rock_lod0, colluvium_lod0), and
-//        rock_lod1.glb, … per mesh.lods entry (nodes rock_lod1, colluvium_lod1, …)
-// (`rock.vdb` is written by the recipe after this stage, with `rock_sdf`.) Every file is atomic.
+// ─▶ pivot ─▶ the bake source ─▶ LOD0 (simplified to mesh.max_error) ─▶ the LOD chain, in
+// memory. The files come later (pipeline/export_meshes.h), once the texture stage has given
+// the LODs their uvs and tangents.
+//
+// The bake source is the finest surface the bake made — extraction, subdivision, volume
+// match and detail, coloured and about the pivot, before any simplification — that LOD0 and
+// the chain were simplified from: what the texture stage bakes its maps from
+// (docs/textures.md). It is the largest thing the stage makes; a caller drops it once done.
 #pragma once
 
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,24 +24,25 @@ struct SmoothedSdf;  // core/openvdb_support.h
 
 struct MeshStageResult {
   AssetMeshes meshes;                           // LOD0: attributed, coloured, about the pivot
-  std::vector<AssetMeshes> lods;                // LOD1, … (written with glb only)
+  std::vector<AssetMeshes> lods;                // LOD1, … (made with glb only)
+  AssetMeshes source;                           // the bake source (above), in LOD0's frame
   std::vector<std::string> lod_files;           // LOD0, LOD1, …: the file holding each (empty: none)
   std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
   std::array<double, 3> pivot{};                // footprintPivot: world position of the meshes' origin
   std::size_t refined_triangles = 0;            // both surfaces before simplification
-  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0, export_seconds = 0;
+  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0;
 };
 
 // Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").
 bool exportsFormat(const Preset& preset, const std::string& format);
 
-// Surfaces, attributes, subdivision and palette, in memory (no files). The
-// curvature attribute is exposure under `preset.bubbles`: pass the bubble
-// graph in effect when the simulation ended (its latest keyframe's).
+// Surfaces, attributes, subdivision and palette, the bake source and LOD0, in memory (no
+// files; no LOD chain). The curvature attribute is exposure under `preset.bubbles`: pass the
+// bubble graph in effect when the simulation ended (its latest keyframe's).
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);
 
-// buildMeshes, then the files the preset's `export:` list asks for.
-// Throws std::runtime_error on failure (nothing half-written).
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir);
+// buildMeshes, then the LOD chain (`mesh.lods`) when the preset exports glb, and the name of
+// the file that will hold each LOD (`lod_files`). No files.
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset);
 
 }  // namespace rockbake

@@ -15,8 +15,9 @@ nlohmann::ordered_json bakeTimingsJson(const BakeTimings& t) {
     stages["mesh_subdivide"] = t.mesh->subdivide;
     stages["mesh_attributes"] = t.mesh->attributes;
     stages["mesh_simplify"] = t.mesh->simplify;
-    stages["export"] = t.mesh->exports;
   }
+  if (t.texture) stages["texture"] = *t.texture;
+  if (t.mesh) stages["export"] = t.mesh->exports;
   if (t.write_vdb) stages["write_vdb"] = *t.write_vdb;
   if (t.collision) stages["collision"] = *t.collision;
   if (t.render) stages["render"] = *t.render;

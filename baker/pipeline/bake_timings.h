@@ -27,6 +27,7 @@ struct BakeTimings {
   double simulate_colluvium = 0.0;
   double simulate_rockfall = 0.0;
   std::optional<MeshTimings> mesh;
+  std::optional<double> texture;  // the texture set: atlases, tangents, rays, maps and their files
   std::optional<double> write_vdb;
   std::optional<double> collision;  // the hulls and collision.glb
   std::optional<double> render;     // POV-Ray and its previews
@@ -35,7 +36,7 @@ struct BakeTimings {
 
 // {"load", "shape", "simulate", "simulate_curvature", "simulate_colluvium",
 //  "simulate_rockfall", "mesh_extract", "mesh_subdivide", "mesh_attributes",
-//  "mesh_simplify", "export", "write_vdb", "collision", "render", "total"},
+//  "mesh_simplify", "texture", "export", "write_vdb", "collision", "render", "total"},
 // those that ran.
 nlohmann::ordered_json bakeTimingsJson(const BakeTimings& timings);
 

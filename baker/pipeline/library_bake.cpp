@@ -122,7 +122,8 @@ JobOutcome bakeJob(const LibraryRun& run, std::size_t i) {
     tidyAssetFolder(*lock);
     Preset preset = loadPreset(run.library.entries[job.entry].preset_file, inputs.overrides);
     out_of_memory = outOfMemoryMessage(preset);
-    preset.name = job.name;  // the asset is the job: OUT/<job>/, and the name in its headers
+    preset.name = job.name;                             // the asset is the job: OUT/<job>/, and the name in its headers
+    if (!run.options.textures) preset.texture.reset();  // and so in the input hash: a textured bake is not it
     const double load_seconds = seconds();
     if (isCompleteAsset(asset_dir, bakeInputHash(preset, run.options.mesh, run.options.render, run.base_dir))) {
       outcome.status = JobStatus::Skipped;

@@ -60,6 +60,7 @@ struct LibraryBakeOptions {
   std::optional<int> resolution;  // --resolution
   bool mesh = true;
   bool render = true;
+  bool textures = true;  // false (--no-textures): every job's preset without its texture: block
   const std::atomic<bool>* cancel = nullptr;
   LibraryObserver observer;
 };

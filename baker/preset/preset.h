@@ -201,6 +201,29 @@ struct BakeParams {
   std::vector<PaletteLayer> layers;
   std::optional<SrgbColor> colluvium_color;  // default a sandy buff
 };
+// ---- texture sets (docs/textures.md) ----
+enum class TextureMap {
+  BaseColor,  // <name>_BaseColor[_LOD<k>].png: 8-bit sRGB RGB
+  Normal,     // <name>_Normal_LOD<k>.png: 16-bit RGB, tangent space, OpenGL convention (+Y up)
+  Orm,        // <name>_ORM[_LOD<k>].png: 8-bit linear RGB, R occlusion, G roughness, B metal (0)
+  Height,     // <name>_Height.exr (LOD0 only): 32-bit float, signed distance LOD0 → source, world units
+  Mask,       // <name>_Mask[_LOD<k>].png: 8-bit linear RGBA, durability, colluvium, curvature, altitude
+};
+// How big each LOD's maps are: `halved`, LOD k at size / 2^k (at least 256); `full`, every LOD at size.
+enum class LodMapSize { Halved, Full };
+struct TextureParams {
+  int size = 2048;   // LOD0's map width and height, texels: a power of two, 256..8192
+  int padding = 8;   // empty texels between charts, 0..64; every map is dilated into them
+  int ao_rays = 32;  // ambient-occlusion rays per vertex, 1..1024
+  // How far an occlusion ray looks, world units; 0: without limit (the whole asset occludes).
+  double ao_distance = 0.0;
+  // How far each texel's ray looks from the LOD's surface, both ways along its normal,
+  // world units; 0: 5 % of the bake source's bounding-box diagonal.
+  double cage = 0.0;
+  std::vector<TextureMap> maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm, TextureMap::Height,
+                                  TextureMap::Mask};
+  LodMapSize lod_size = LodMapSize::Halved;
+};
 struct RenderParams {
   std::string template_name = "studio";
   int width = 640;
@@ -256,6 +279,9 @@ struct Preset : SimParams {
   std::vector<std::string> tags;                                       // asset.json's tags, each [a-z0-9_-]+
   double units_per_meter = 1.0;  // world units per metre (asset.json's physical size), > 0
   RenderParams render;
+  // The texture set (UV atlases, tangent frames and baked maps on every LOD); none: the
+  // meshes carry vertex colours only. The house style gives one.
+  std::optional<TextureParams> texture;
 
   // Where each key the file gave was written, by key path ("shape.image.path"),
   // so that later stages place their errors too (an unreadable image, a shape

@@ -72,6 +72,21 @@ std::span<const EnumName<ResponseParams::Kind>> enumNames() {
   return names;
 }
 
+template <>
+std::span<const EnumName<TextureMap>> enumNames() {
+  static constexpr EnumName<TextureMap> names[] = {{TextureMap::BaseColor, "base_color"},
+                                                   {TextureMap::Normal, "normal"},
+                                                   {TextureMap::Orm, "orm"},
+                                                   {TextureMap::Height, "height"},
+                                                   {TextureMap::Mask, "mask"}};
+  return names;
+}
+template <>
+std::span<const EnumName<LodMapSize>> enumNames() {
+  static constexpr EnumName<LodMapSize> names[] = {{LodMapSize::Halved, "halved"}, {LodMapSize::Full, "full"}};
+  return names;
+}
+
 namespace {
 
 constexpr const char* kWorld = "world units";
@@ -580,6 +595,34 @@ const MapSpec<CollisionParams>& collisionSpec() {
   return spec;
 }
 
+const MapSpec<TextureParams>& textureSpec() {
+  static const Keys<TextureParams> k;
+  static const MapSpec<TextureParams> spec{
+      {
+          k("size", &TextureParams::size, textureSize(), "LOD0's maps' width and height").unit("texels"),
+          k("lod_size", &TextureParams::lod_size, choice<LodMapSize>(),
+            "`halved`: LOD k's maps at `size / 2^k`, at least 256; `full`: every LOD's at `size`"),
+          k("padding", &TextureParams::padding, integer<int>(0, 64),
+            "empty texels between charts; every map is dilated into them")
+              .unit("texels"),
+          k("ao_rays", &TextureParams::ao_rays, integer<int>(1, 1024), "ambient-occlusion rays per vertex")
+              .unit("rays"),
+          k("ao_distance", &TextureParams::ao_distance, numberIn(0.0, kMaxWorldLength),
+            "how far an occlusion ray looks; 0: without limit")
+              .unit(kWorld),
+          k("cage", &TextureParams::cage, numberIn(0.0, kMaxWorldLength),
+            "how far each texel's ray looks for the bake source, both ways along the normal; 0: 5 % of its "
+            "bounding-box diagonal")
+              .unit(kWorld),
+          k("maps", &TextureParams::maps, textureMaps(), "the maps baked").defaultIs("all five"),
+      },
+      {},
+      "([textures.md](textures.md)). Given, even as `texture: {}`, the bake makes a texture set: every LOD "
+      "unwrapped, with tangent frames and maps baked from the finest surface into `textures/`; left out (or with "
+      "`--no-textures`), none."};
+  return spec;
+}
+
 // ---- the preset ----
 
 constexpr auto stopTime = [](auto& p) -> auto& {
@@ -631,6 +674,7 @@ const MapSpec<Preset>& presetSpec() {
           k("units_per_meter", &Preset::units_per_meter, numberIn(0.0, 1e6, true),
             "world units per metre: `asset.json`'s physical size"),
           k("render", &Preset::render, mapValue<renderSpec>(), "the POV-Ray render"),
+          k("texture", &Preset::texture, mapValue<textureSpec>(), "the texture set: UV atlases and baked maps"),
       },
       {exactlyOne({"time", "cycles"}, "missing 'time' (or 'cycles')", "give either 'time' or 'cycles', not both",
                   "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution")},

@@ -199,6 +199,38 @@ Value<std::string> templateName() {
                              });
 }
 
+Value<int> textureSize() {
+  return custom<int>("whole number", "a power of two, 256 … 8192", [](const Field& f, int& size, const ReadContext&) {
+    size = int(f.integer(256, 8192));
+    if ((size & (size - 1)) != 0)
+      f.fail(std::to_string(size) + " is not a power of two", "use 256, 512, 1024, 2048, 4096 or 8192");
+  });
+}
+
+Value<std::vector<TextureMap>> textureMaps() {
+  std::string names;
+  for (const auto& name : namesOf<TextureMap>()) names += (names.empty() ? "`" : ", `") + name + "`";
+  return {"list",
+          "each " + names + ", none twice, at least one",
+          nullptr,
+          false,
+          [](const Field& l, std::vector<TextureMap>& maps, const ReadContext&) {
+            maps.clear();
+            if (l.size() == 0) l.fail("lists no map", "list at least one, or bake with --no-textures to make none");
+            for (std::size_t i = 0; i < l.size(); ++i) {
+              const TextureMap map = *valueNamed<TextureMap>(l.item(i).choice(namesOf<TextureMap>()));
+              if (std::find(maps.begin(), maps.end(), map) != maps.end())
+                l.item(i).fail("'" + std::string(nameOf(map)) + "' is listed twice");
+              maps.push_back(map);
+            }
+          },
+          [](const std::vector<TextureMap>& maps) {
+            json out = json::array();
+            for (TextureMap map : maps) out.push_back(nameOf(map));
+            return out;
+          }};
+}
+
 // The files' `extends` were merged before the overrides; only an override can bring one back.
 void refuseExtendsOverride(const Field& extends) {
   extends.fail("extends cannot be overridden", "name the base preset in the preset file");

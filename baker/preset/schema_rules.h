@@ -32,6 +32,8 @@ Value<SrgbColor> color();                                    // "#rrggbb" or [r,
 Value<std::vector<std::string>> exportFormats();             // ply, obj, glb, vdb, collision, each once
 Value<std::vector<std::string>> tagList();                   // asset names; repeats dropped
 Value<std::string> templateName();                           // a template in render_templates/, by name
+Value<int> textureSize();                                    // a power of two, 256 … 8192
+Value<std::vector<TextureMap>> textureMaps();                // map names, each once, at least one
 
 void refuseExtendsOverride(const Field& extends);
 

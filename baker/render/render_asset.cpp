@@ -93,7 +93,7 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   std::filesystem::create_directories(r.asset_dir);
   AssetFrame meshes;
   if (mesh_data) {
-    writeMeshInclude(*mesh_data, out.mesh_include);
+    writeMeshInclude(*mesh_data, out.mesh_include, r.maps);
     meshes = assetFrame(*mesh_data);
   } else {
     meshes = readAssetFrame(out.mesh_include);
@@ -121,7 +121,8 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
       const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
       // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
       // relative to the working directory (the asset folder).
-      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed), r.asset_dir / scene_rel);
+      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed),
+                 r.asset_dir / scene_rel);
       renderOne(r, threads, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
       out.turntable_frames.push_back(r.asset_dir / exr_rel);
     }

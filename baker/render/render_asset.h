@@ -12,6 +12,7 @@
 
 #include "core/surface_mesh.h"
 #include "preset/preset.h"
+#include "render/scene.h"
 
 namespace rockbake {
 
@@ -27,6 +28,9 @@ struct RenderRequest {
   int threads = 0;  // POV-Ray's +WT; 0: all hardware threads (call it when the baker's own pool is idle)
   std::chrono::seconds timeout{1800};         // per POV-Ray run
   const std::atomic<bool>* cancel = nullptr;  // see PovrayJob::cancel
+  // The texture set's LOD0 maps (render/scene.h): the meshes are then the textured LOD0 (with
+  // uvs) and the templates that ask for them render them; empty: vertex colours only.
+  RenderMaps maps;
 };
 
 struct RenderOutputs {

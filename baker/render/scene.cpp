@@ -61,7 +61,7 @@ double radius(const AssetMeshes& m) {
   return std::max(std::sqrt(r2), 1e-6);
 }
 
-void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& name) {
+void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& name, bool mapped) {
   const std::size_t n = mesh.positions.size();
   out << "#declare " << name << " = mesh2 {\n  vertex_vectors { " << n;
   char buf[128];
@@ -78,6 +78,20 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
       out << buf;
     }
     out << "\n  }\n";
+  }
+  if (mapped) {
+    // POV-Ray's image v runs up the image, glTF's down it.
+    out << "  uv_vectors { " << n;
+    for (const auto& uv : mesh.uvs) {
+      std::snprintf(buf, sizeof buf, ",\n    <%.7g, %.7g>", uv[0], 1.0f - uv[1]);
+      out << buf;
+    }
+    out << "\n  }\n#if (Rockbake_Use_Maps)\n  face_indices { " << mesh.triangles.size();
+    for (const auto& t : mesh.triangles) {
+      std::snprintf(buf, sizeof buf, ",\n    <%u, %u, %u>", t[0], t[1], t[2]);
+      out << buf;
+    }
+    out << "\n  }\n  texture { Rockbake_Mapped }\n#else\n";
   }
   // One texture per distinct colour, not per vertex: POV-Ray builds a texture
   // object for every entry, and parsing them dominated the render of a large
@@ -113,7 +127,20 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
                   texture_of[t[1]], texture_of[t[2]]);
     out << buf;
   }
-  out << "\n  }\n}\n";
+  out << (mapped ? "\n  }\n#end\n}\n" : "\n  }\n}\n");
+}
+
+// The texture a template gets with Rockbake_Use_Maps: the base colour through the uvs, the height as a bump.
+// POV-Ray's image bump reads the height's change over a texel and tilts the normal by bump_size times it, so
+// bump_size is the texels per world unit: the height's slope in world units.
+void writeMappedTexture(std::ostream& out, const RenderMaps& maps) {
+  out << "#declare Rockbake_Has_Maps = 1;\n#ifndef (Rockbake_Use_Maps)\n#declare Rockbake_Use_Maps = 0;\n#end\n"
+      << "#declare Rockbake_Mapped = texture {\n  uv_mapping\n  pigment { image_map { png \"" << maps.base_color
+      << "\" gamma srgb interpolate 2 } }\n";
+  if (!maps.height.empty())
+    out << "  normal { bump_map { exr \"" << maps.height << "\" interpolate 2 bump_size " << num(maps.texels_per_unit)
+        << " } }\n";
+  out << "  finish { Rockbake_Finish }\n}\n";
 }
 
 }  // namespace
@@ -191,9 +218,13 @@ CameraSetup frameCamera(const AssetFrame& meshes, int width, int height, double 
   return cam;
 }
 
-void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file) {
+void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps) {
   if (meshes.rock.positions.empty() || meshes.rock.triangles.empty())
     throw std::runtime_error("cannot write " + file.string() + ": the rock mesh has no triangles");
+  const bool mapped = !maps.empty();
+  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
+    if (mapped && m->uvs.size() != m->positions.size())
+      throw std::runtime_error("cannot write " + file.string() + ": the " + m->name + " mesh has maps but no uvs");
   const bool colluvium = !meshes.colluvium.positions.empty() && !meshes.colluvium.triangles.empty();
   writeFileAtomically(file, [&](std::ostream& out) {
     const AssetFrame f = assetFrame(meshes);
@@ -210,8 +241,9 @@ void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& fi
           << "#ifndef (" << surface << "_Normal)\n#declare " << surface << "_Normal = normal { granite 0 }\n#end\n";
     out << "#ifndef (Rockbake_Dark)\n#declare Rockbake_Dark = 1;\n#end\n"
         << "#ifndef (Rockbake_Light)\n#declare Rockbake_Light = 1;\n#end\n";
-    writeMesh2(out, meshes.rock, "Rockbake_Rock");
-    if (colluvium) writeMesh2(out, meshes.colluvium, "Rockbake_Colluvium");
+    if (mapped) writeMappedTexture(out, maps);
+    writeMesh2(out, meshes.rock, "Rockbake_Rock", mapped);
+    if (colluvium) writeMesh2(out, meshes.colluvium, "Rockbake_Colluvium", mapped);
     out << "#declare Rockbake_Has_Colluvium = " << (colluvium ? 1 : 0) << ";\n";
   });
 }

@@ -59,6 +59,15 @@ CameraSetup frameCamera(const AssetFrame& asset, int width, int height, double t
 CameraSetup frameCamera(const AssetMeshes& meshes, int width, int height, double turntable_deg = 0.0,
                         double angle_deg = 40.0);
 
+// The texture set's LOD0 maps as a render reads them (docs/textures.md), file names relative
+// to the asset folder, POV-Ray's working folder.
+struct RenderMaps {
+  std::string base_color;      // 8-bit sRGB PNG
+  std::string height;          // 32-bit float EXR, world units along the normal (empty: no bump)
+  double texels_per_unit = 0;  // the atlas's texel density: POV-Ray reads the height's slope per texel
+  bool empty() const { return base_color.empty(); }
+};
+
 // Writes the mesh2 include (atomically): declares Rockbake_Rock and, when there
 // is colluvium, Rockbake_Colluvium (objects), and Rockbake_Has_Colluvium (0/1).
 // Vertex colours go into a texture_list, one texture per distinct colour
@@ -68,7 +77,14 @@ CameraSetup frameCamera(const AssetMeshes& meshes, int width, int height, double
 // Rockbake_Colluvium_Normal, finish Rockbake_Finish; a template may #declare
 // each before the #include, the defaults give the flat colour); faces carry
 // their three vertices' texture indices, so colours interpolate.
-void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file);
+//
+// With `maps` (the meshes then have uvs: the texture set's LOD0) the include also
+// declares Rockbake_Has_Maps = 1 and, where a template sets Rockbake_Use_Maps to 1
+// before the #include, gives both surfaces instead the one texture
+// Rockbake_Mapped: the base colour through the uvs (`uv_mapping` image_map,
+// `gamma srgb`), the height as a bump, finish Rockbake_Finish. Without maps the
+// include is as above, whatever the template sets.
+void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps = {});
 
 struct SceneFrame {
   int frame = 0;   // 0-based

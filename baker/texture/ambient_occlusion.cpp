@@ -8,11 +8,11 @@
 #include <tbb/parallel_for.h>
 
 #include "core/hash.h"
-#include "texture/mesh_helpers.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 
-using namespace texture_detail;
+constexpr Vec3d kZero{0.0, 0.0, 0.0};  // normalised()'s fallback: a zero vector stays zero
 
 namespace {
 
@@ -28,7 +28,7 @@ double radicalInverse(std::uint32_t i) {
 }  // namespace
 
 std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const RaySource& source,
-                                                  const TextureParams& params) {
+                                                  const TextureParams& params, std::uint64_t seed) {
   checkTextureParams(params);
   const double pi = 3.14159265358979323846;
   const int count = params.ao_rays;
@@ -43,16 +43,16 @@ std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const R
     open[s].assign(m.positions.size(), 1.0f);
     if (m.triangles.empty()) continue;
     tbb::parallel_for(std::size_t(0), m.positions.size(), [&](std::size_t v) {
-      const V3 n = normalized(toV3(m.normals[v]));
+      const Vec3d n = normalised(toVec3d(m.normals[v]), kZero);
       // An orthonormal frame about the normal (Duff et al., "Building an Orthonormal Basis, Revisited", 2017).
       const double sign = std::copysign(1.0, n[2]);
       const double a = -1.0 / (sign + n[2]), b = n[0] * n[1] * a;
-      const V3 t1{1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]}, t2{b, sign + n[1] * n[1] * a, -n[1]};
+      const Vec3d t1{1.0 + sign * n[0] * n[0] * a, sign * b, -sign * n[0]}, t2{b, sign + n[1] * n[1] * a, -n[1]};
       const auto& p = m.positions[v];
       std::uint32_t bits[3];
       std::memcpy(bits, p.data(), sizeof bits);
       const std::uint64_t h =
-          counterHash(params.seed, purpose, std::uint64_t(s), mix64(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
+          counterHash(seed, purpose, std::uint64_t(s), mix64(std::uint64_t(bits[0]) << 32 | bits[1]) ^ bits[2]);
       const double shift1 = unitInterval(h), shift2 = unitInterval(mix64(h));
       int hits = 0;
       std::array<float, 3> packet[RaySource::kPacket];
@@ -63,7 +63,7 @@ std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const R
           const double u1 = std::fmod((i + 0.5) / count + shift1, 1.0);
           const double u2 = std::fmod(radicalInverse(std::uint32_t(i)) + shift2, 1.0);
           const double r = std::sqrt(u1), phi = 2 * pi * u2;
-          const V3 d =
+          const Vec3d d =
               add(add(scale(t1, r * std::cos(phi)), scale(t2, r * std::sin(phi))), scale(n, std::sqrt(1.0 - u1)));
           packet[j] = {float(d[0]), float(d[1]), float(d[2])};
         }

@@ -3,7 +3,7 @@
 // cosine-weighted rays over the vertex's normal hemisphere that leave both surfaces of the
 // source without a hit within `params.ao_distance` (0: any distance), 1 open … 0 closed. The
 // rays are a stratified set (a radical-inverse sequence) turned by an offset hashed from
-// (seed, surface, the vertex's position), so the copies of a vertex a seam split agree, and
+// (`seed`, surface, the vertex's position), so the copies of a vertex a seam split agree, and
 // the same at any thread count; they go out in packets of RaySource::kPacket.
 //
 // Per vertex, interpolated over the LOD's triangles, rather than per texel: occlusion varies
@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "core/surface_mesh.h"
@@ -25,6 +26,6 @@ namespace rockbake {
 
 // [0]: per vertex of at.rock, [1]: of at.colluvium (with normals). TBB-parallel over vertices.
 std::array<std::vector<float>, 2> vertexOcclusion(const AssetMeshes& at, const RaySource& source,
-                                                  const TextureParams& params);
+                                                  const TextureParams& params, std::uint64_t seed);
 
 }  // namespace rockbake

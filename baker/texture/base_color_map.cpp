@@ -13,7 +13,7 @@ TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& lo
   return walkTexels<std::uint8_t>(bake, 3, [&](std::size_t, const TexelSample& s, std::uint8_t* out) {
     const SurfacePoint& at = s.hit ? s.source : s.lod;
     const SurfaceMesh& m = *at.mesh;
-    const V3 colour = m.colors.size() == m.positions.size() ? at.vector(m.colors) : V3{0.18, 0.18, 0.18};
+    const Vec3d colour = m.colors.size() == m.positions.size() ? at.vector(m.colors) : Vec3d{0.18, 0.18, 0.18};
     const float cover = s.surface == 1                             ? 1.0f
                         : m.colluvium.size() == m.positions.size() ? float(at.scalar(m.colluvium))
                                                                    : 0.0f;

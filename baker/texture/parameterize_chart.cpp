@@ -11,12 +11,12 @@
 #include <unordered_map>
 #include <utility>
 
-#include "texture/mesh_helpers.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 namespace {
 
-using namespace texture_detail;
+constexpr Vec3d kZero{0.0, 0.0, 0.0};  // normalised()'s fallback: a zero vector stays zero
 using UV = std::array<double, 2>;
 
 constexpr double kMaxScale = 2.0;         // linear texel-density ratio to the chart's mean …
@@ -112,7 +112,7 @@ bool isDisk(const LocalChart& c) {
 // The LSCM energy's normal equations with two vertices pinned; returns uv per local vertex.
 std::vector<UV> solveLscm(const SurfaceMesh& mesh, const LocalChart& c) {
   const std::size_t n = c.vertices.size();
-  const auto position = [&](std::uint32_t l) { return toV3(mesh.positions[c.vertices[l]]); };
+  const auto position = [&](std::uint32_t l) { return toVec3d(mesh.positions[c.vertices[l]]); };
   // Pins: the boundary vertex farthest from the first boundary vertex, and the one farthest from it.
   const auto farthest = [&](std::uint32_t from) {
     std::uint32_t best = from;
@@ -161,11 +161,11 @@ std::vector<UV> solveLscm(const SurfaceMesh& mesh, const LocalChart& c) {
     }
   };
   for (const auto& t : c.tris) {
-    const V3 a = position(t[0]), b = position(t[1]), cc = position(t[2]);
-    const V3 e1 = sub(b, a), e2 = sub(cc, a), normal = cross(e1, e2);
+    const Vec3d a = position(t[0]), b = position(t[1]), cc = position(t[2]);
+    const Vec3d e1 = sub(b, a), e2 = sub(cc, a), normal = cross(e1, e2);
     const double area = 0.5 * length(normal);
     if (area <= 1e-14 * dot(e1, e1) || area <= 0) continue;  // a zero-area triangle says nothing about angles
-    const V3 x = normalized(e1), y = normalized(cross(normal, e1));
+    const Vec3d x = normalised(e1, kZero), y = normalised(cross(normal, e1), kZero);
     const std::array<double, 3> px{0.0, length(e1), dot(e2, x)}, py{0.0, 0.0, dot(e2, y)};
     const double w = 1.0 / std::sqrt(area);
     Row re, im;
@@ -254,10 +254,10 @@ ChartUv parameterizeChart(const SurfaceMesh& mesh, const std::vector<std::uint32
   }
   if (c.tris.size() == 1) {
     // In its own plane (a zero-area triangle laid along its first edge).
-    const V3 a = toV3(mesh.positions[c.vertices[0]]), b = toV3(mesh.positions[c.vertices[1]]),
-             cc = toV3(mesh.positions[c.vertices[2]]);
-    const V3 e1 = sub(b, a), e2 = sub(cc, a);
-    const V3 x = normalized(e1), y = normalized(cross(cross(e1, e2), e1));
+    const Vec3d a = toVec3d(mesh.positions[c.vertices[0]]), b = toVec3d(mesh.positions[c.vertices[1]]),
+                cc = toVec3d(mesh.positions[c.vertices[2]]);
+    const Vec3d e1 = sub(b, a), e2 = sub(cc, a);
+    const Vec3d x = normalised(e1, kZero), y = normalised(cross(cross(e1, e2), e1), kZero);
     out.uv = {UV{0, 0}, UV{length(e1), 0}, UV{dot(e2, x), dot(e2, y)}};
     return out;
   }
@@ -271,8 +271,8 @@ ChartUv parameterizeChart(const SurfaceMesh& mesh, const std::vector<std::uint32
   double sum3 = 0, sum2 = 0;
   for (std::size_t i = 0; i < c.tris.size(); ++i) {
     const auto& t = c.tris[i];
-    const V3 a = toV3(mesh.positions[c.vertices[t[0]]]), b = toV3(mesh.positions[c.vertices[t[1]]]),
-             cc = toV3(mesh.positions[c.vertices[t[2]]]);
+    const Vec3d a = toVec3d(mesh.positions[c.vertices[t[0]]]), b = toVec3d(mesh.positions[c.vertices[t[1]]]),
+                cc = toVec3d(mesh.positions[c.vertices[t[2]]]);
     area3[i] = 0.5 * length(cross(sub(b, a), sub(cc, a)));
     area2[i] = signedArea(out.uv[t[0]], out.uv[t[1]], out.uv[t[2]]);
     sum3 += area3[i];
@@ -308,35 +308,36 @@ ChartUv parameterizeChart(const SurfaceMesh& mesh, const std::vector<std::uint32
   return out;
 }
 
-std::array<std::vector<std::uint32_t>, 2> splitChart(const SurfaceMesh& mesh,
-                                                     const std::vector<std::array<std::uint32_t, 3>>& across,
+std::array<std::vector<std::uint32_t>, 2> splitChart(const SurfaceMesh& mesh, const EdgeTable& edges,
                                                      const std::vector<std::uint32_t>& triangles) {
   std::unordered_map<std::uint32_t, std::uint32_t> index;  // mesh triangle → position in `triangles`
   index.reserve(2 * triangles.size());
   for (std::uint32_t i = 0; i < triangles.size(); ++i) index.emplace(triangles[i], i);
   const std::size_t n = triangles.size();
   const auto neighbours = [&](std::uint32_t i, auto&& visit) {
-    for (std::uint32_t u : across[triangles[i]]) {
-      if (u == kNoTriangle) continue;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = edges.faceAcross(3 * triangles[i] + k);
+      if (u == EdgeTable::kNone) continue;
       const auto it = index.find(u);
       if (it != index.end()) visit(it->second);
     }
   };
   const auto farthest = [&](std::uint32_t from) {
-    std::vector<std::uint32_t> hops(n, kNoTriangle), queue{from};
+    std::vector<std::uint32_t> hops(n, EdgeTable::kNone), queue{from};
     hops[from] = 0;
     for (std::size_t q = 0; q < queue.size(); ++q)
       neighbours(queue[q], [&](std::uint32_t j) {
-        if (hops[j] == kNoTriangle) hops[j] = hops[queue[q]] + 1, queue.push_back(j);
+        if (hops[j] == EdgeTable::kNone) hops[j] = hops[queue[q]] + 1, queue.push_back(j);
       });
     return queue.back();
   };
   const std::uint32_t a = farthest(0), b = farthest(a);
-  std::vector<V3> centre(n);
+  std::vector<Vec3d> centre(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& t = mesh.triangles[triangles[i]];
     centre[i] =
-        scale(add(add(toV3(mesh.positions[t[0]]), toV3(mesh.positions[t[1]])), toV3(mesh.positions[t[2]])), 1.0 / 3.0);
+        scale(add(add(toVec3d(mesh.positions[t[0]]), toVec3d(mesh.positions[t[1]])), toVec3d(mesh.positions[t[2]])),
+              1.0 / 3.0);
   }
   // Nearest seed by path length over centroids (Dijkstra from both seeds at once).
   std::vector<int> side(n, -1);

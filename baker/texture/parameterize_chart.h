@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/edge_table.h"
 #include "core/surface_mesh.h"
 
 namespace rockbake {
@@ -35,10 +36,9 @@ struct ChartUv {
 ChartUv parameterizeChart(const SurfaceMesh& mesh, const std::vector<std::uint32_t>& triangles);
 
 // Splits a chart of two or more triangles in two connected halves, grown from two triangles
-// far apart (breadth-first, then nearest by centroid distance). `across`: the mesh's
-// triangleNeighbours. Deterministic.
-std::array<std::vector<std::uint32_t>, 2> splitChart(const SurfaceMesh& mesh,
-                                                     const std::vector<std::array<std::uint32_t, 3>>& across,
+// far apart (breadth-first, then nearest by centroid distance). `edges`: the mesh's edge
+// table (core/edge_table.h). Deterministic.
+std::array<std::vector<std::uint32_t>, 2> splitChart(const SurfaceMesh& mesh, const EdgeTable& edges,
                                                      const std::vector<std::uint32_t>& triangles);
 
 }  // namespace rockbake

@@ -23,7 +23,10 @@ class RockLook {
  public:
   // `radius`: half the asset's bounding-box diagonal; `voxel_size`: the grid's h (0: no
   // per-voxel term); `durability_range`: what durability normalises by (AssetMeshes).
-  RockLook(std::uint64_t seed, double radius, double voxel_size, std::array<float, 2> durability_range);
+  // `varied` false: no noise at all, the palette's colours exactly and the roughness without
+  // grain (the debug and curvature palettes, whose colours are data).
+  RockLook(std::uint64_t seed, double radius, double voxel_size, std::array<float, 2> durability_range,
+           bool varied = true);
 
   // The factor on the palette's linear colour at `p`, with colluvium coverage `cover` (0..1).
   float colourFactor(const std::array<double, 3>& p, float cover) const;
@@ -35,6 +38,7 @@ class RockLook {
  private:
   PerlinNoise mottle_, variation_, grain_, colluvium_grain_;
   double mottle_scale_, variation_scale_, grain_scale_, colluvium_scale_;
+  bool varied_;
   float durability_min_, durability_span_;
 };
 

@@ -7,12 +7,13 @@
 #include <queue>
 #include <tuple>
 
-#include "texture/mesh_helpers.h"
+#include "core/edge_table.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 namespace {
 
-using namespace texture_detail;
+constexpr Vec3d kZero{0.0, 0.0, 0.0};  // normalised()'s fallback: a zero vector stays zero
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr double kSoftCreaseCos = 0.866;  // cos 30°: a bend from here …
@@ -26,11 +27,12 @@ constexpr int kBorderPasses = 4;
 struct Surface {
   // Each triangle's normal smoothed over the asset's roughness (the cone and turn tests read
   // the surface's shape, not its grain), area and centroid.
-  std::vector<V3> normal, centroid;
+  std::vector<Vec3d> normal, centroid;
   std::vector<double> area;
-  std::vector<std::array<std::uint32_t, 3>> across;  // neighbour per edge (triangleNeighbours)
-  std::vector<std::array<double, 3>> step;           // cost per edge before the turn factor
-  std::vector<std::array<double, 3>> seam;           // per edge: its length times how visible a seam there is
+  std::vector<std::array<std::uint32_t, 3>>
+      across;  // the triangle across each edge, or EdgeTable::kNone (EdgeTable::faceAcross)
+  std::vector<std::array<double, 3>> step;  // cost per edge before the turn factor
+  std::vector<std::array<double, 3>> seam;  // per edge: its length times how visible a seam there is
 };
 
 // How well a seam hides along the edge from a to b, 0 (in plain sight) … 1 (hidden): in a
@@ -51,20 +53,24 @@ Surface describe(const SurfaceMesh& mesh) {
   const std::size_t nt = mesh.triangles.size();
   Surface s;
   s.normal.resize(nt), s.centroid.resize(nt), s.area.resize(nt), s.step.resize(nt), s.seam.resize(nt);
-  std::vector<V3> own(nt);
+  std::vector<Vec3d> own(nt);
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, edges = 0;
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& tri = mesh.triangles[t];
-    const V3 a = toV3(mesh.positions[tri[0]]), b = toV3(mesh.positions[tri[1]]), c = toV3(mesh.positions[tri[2]]);
-    const V3 n = cross(sub(b, a), sub(c, a));
+    const Vec3d a = toVec3d(mesh.positions[tri[0]]), b = toVec3d(mesh.positions[tri[1]]),
+                c = toVec3d(mesh.positions[tri[2]]);
+    const Vec3d n = cross(sub(b, a), sub(c, a));
     s.area[t] = 0.5 * length(n);
-    own[t] = normalized(n);
+    own[t] = normalised(n, kZero);
     s.centroid[t] = scale(add(add(a, b), c), 1.0 / 3.0);
     edges += length(sub(b, a)) + length(sub(c, b)) + length(sub(a, c));
     for (int i = 0; i < 3; ++i)
       lo[i] = std::min({lo[i], a[i], b[i], c[i]}), hi[i] = std::max({hi[i], a[i], b[i], c[i]});
   }
-  s.across = triangleNeighbours(mesh.triangles);
+  const EdgeTable table(mesh.triangles);
+  s.across.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (std::uint32_t k = 0; k < 3; ++k) s.across[t][k] = table.faceAcross(std::uint32_t(3 * t + k));
   // Smoothing passes (area-weighted means over edge neighbours) reaching about kSmoothing of
   // the surface's bounding-box diagonal: the detail's grain is gone, the shape stays.
   const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
@@ -72,31 +78,31 @@ Surface describe(const SurfaceMesh& mesh) {
   const double mean_edge = edges / double(3 * nt);
   const int passes = mean_edge > 0 ? std::clamp(int(std::lround(kSmoothing * diagonal / mean_edge)), 0, 12) : 0;
   s.normal = own;
-  std::vector<V3> next(nt);
+  std::vector<Vec3d> next(nt);
   for (int pass = 0; pass < passes; ++pass) {
     for (std::size_t t = 0; t < nt; ++t) {
-      V3 sum = scale(s.normal[t], s.area[t]);
+      Vec3d sum = scale(s.normal[t], s.area[t]);
       for (std::uint32_t u : s.across[t])
-        if (u != kNoTriangle) sum = add(sum, scale(s.normal[u], s.area[u]));
-      next[t] = length(sum) > 0 ? normalized(sum) : s.normal[t];
+        if (u != EdgeTable::kNone) sum = add(sum, scale(s.normal[u], s.area[u]));
+      next[t] = length(sum) > 0 ? normalised(sum, kZero) : s.normal[t];
     }
     std::swap(s.normal, next);
   }
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t u = s.across[t][k];
-      if (u == kNoTriangle) continue;
+      if (u == EdgeTable::kNone) continue;
       const std::uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
       const double h = hidden(mesh, a, b, dot(own[t], own[u]));
       s.step[t][k] = length(sub(s.centroid[u], s.centroid[t])) * (1.0 + kHiddenCost * h);
-      s.seam[t][k] = length(sub(toV3(mesh.positions[b]), toV3(mesh.positions[a]))) * (1.0 - h);
+      s.seam[t][k] = length(sub(toVec3d(mesh.positions[b]), toVec3d(mesh.positions[a]))) * (1.0 - h);
     }
   return s;
 }
 
 // One multi-source Dijkstra over the triangles not yet in a chart, from the seeds (with
 // `cone`) or from the charts' borders (without).
-void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<V3>& axes,
+void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<Vec3d>& axes,
           std::vector<std::uint32_t>& chart, bool cone);
 
 struct Entry {
@@ -108,7 +114,7 @@ struct Entry {
 };
 using Queue = std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>>;
 
-double turn(const Surface& s, std::uint32_t t, const V3& axis) {
+double turn(const Surface& s, std::uint32_t t, const Vec3d& axis) {
   return 1.0 + kTurnCost * (1.0 - dot(s.normal[t], axis));
 }
 
@@ -116,13 +122,13 @@ double turn(const Surface& s, std::uint32_t t, const V3& axis) {
 // chart whose axis is within the cone. Then triangles no chart could take go to the chart
 // that reaches them first without the cone (segmentCharts' merge and the flattening's
 // checks judge the result); only a piece no seed reaches at all keeps kNone.
-void partition(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<V3>& axes,
+void partition(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<Vec3d>& axes,
                std::vector<std::uint32_t>& chart) {
   grow(s, seeds, axes, chart, true);
   grow(s, seeds, axes, chart, false);
 }
 
-void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<V3>& axes,
+void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::vector<Vec3d>& axes,
           std::vector<std::uint32_t>& chart, bool cone) {
   const std::size_t nt = s.area.size();
   std::vector<double> best(nt, std::numeric_limits<double>::infinity());
@@ -136,7 +142,7 @@ void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::
       if (chart[t] == kNone) continue;
       for (int j = 0; j < 3; ++j) {
         const std::uint32_t u = s.across[t][j];
-        if (u == kNoTriangle || chart[u] != kNone) continue;
+        if (u == EdgeTable::kNone || chart[u] != kNone) continue;
         const double cost = s.step[t][j] * turn(s, u, axes[chart[t]]);
         if (cost < best[u]) best[u] = cost, queue.push({cost, u, chart[t]});
       }
@@ -149,7 +155,8 @@ void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::
     chart[e.triangle] = e.chart;
     for (int j = 0; j < 3; ++j) {
       const std::uint32_t u = s.across[e.triangle][j];
-      if (u == kNoTriangle || chart[u] != kNone || (cone && dot(s.normal[u], axes[e.chart]) < kMaxChartCos)) continue;
+      if (u == EdgeTable::kNone || chart[u] != kNone || (cone && dot(s.normal[u], axes[e.chart]) < kMaxChartCos))
+        continue;
       const double cost = e.cost + s.step[e.triangle][j] * turn(s, u, axes[e.chart]);
       if (cost < best[u]) {
         best[u] = cost;
@@ -162,7 +169,7 @@ void grow(const Surface& s, const std::vector<std::uint32_t>& seeds, const std::
 // Gives every unassigned triangle a chart: grows one chart at a time from the lowest
 // unassigned triangle, its axis the running mean of its normals.
 void fillUnassigned(const Surface& s, std::vector<std::uint32_t>& chart, std::vector<std::uint32_t>& seeds,
-                    std::vector<V3>& axes) {
+                    std::vector<Vec3d>& axes) {
   const std::size_t nt = s.area.size();
   std::vector<double> best(nt, std::numeric_limits<double>::infinity());
   std::vector<std::uint32_t> touched;  // where `best` was set, reset before the next chart
@@ -171,8 +178,8 @@ void fillUnassigned(const Surface& s, std::vector<std::uint32_t>& chart, std::ve
     for (std::uint32_t t : touched) best[t] = std::numeric_limits<double>::infinity();
     touched.clear();
     const auto k = std::uint32_t(seeds.size());
-    V3 sum{0, 0, 0};
-    V3 axis = s.normal[seed];
+    Vec3d sum{0, 0, 0};
+    Vec3d axis = s.normal[seed];
     Queue queue;
     queue.push({0.0, seed, k});
     best[seed] = 0;
@@ -184,10 +191,10 @@ void fillUnassigned(const Surface& s, std::vector<std::uint32_t>& chart, std::ve
         continue;
       chart[e.triangle] = k;
       sum = add(sum, scale(s.normal[e.triangle], std::max(s.area[e.triangle], 1e-30)));
-      if (length(sum) > 0) axis = normalized(sum);
+      if (length(sum) > 0) axis = normalised(sum, kZero);
       for (int j = 0; j < 3; ++j) {
         const std::uint32_t u = s.across[e.triangle][j];
-        if (u == kNoTriangle || chart[u] != kNone || dot(s.normal[u], axis) < kMaxChartCos) continue;
+        if (u == EdgeTable::kNone || chart[u] != kNone || dot(s.normal[u], axis) < kMaxChartCos) continue;
         const double cost = e.cost + s.step[e.triangle][j] * turn(s, u, axis);
         if (cost < best[u]) {
           best[u] = cost;
@@ -204,19 +211,19 @@ void fillUnassigned(const Surface& s, std::vector<std::uint32_t>& chart, std::ve
 // Each chart's axis becomes its mean normal and its seed its innermost triangle (most
 // steps from the chart's border; ties: the one nearest the axis, then the lowest).
 void fit(const Surface& s, const std::vector<std::uint32_t>& chart, std::vector<std::uint32_t>& seeds,
-         std::vector<V3>& axes) {
+         std::vector<Vec3d>& axes) {
   const std::size_t nt = s.area.size(), nc = seeds.size();
-  std::vector<V3> sum(nc, V3{0, 0, 0});
+  std::vector<Vec3d> sum(nc, Vec3d{0, 0, 0});
   for (std::size_t t = 0; t < nt; ++t)
     sum[chart[t]] = add(sum[chart[t]], scale(s.normal[t], std::max(s.area[t], 1e-30)));
   for (std::size_t k = 0; k < nc; ++k)
-    if (length(sum[k]) > 0) axes[k] = normalized(sum[k]);
+    if (length(sum[k]) > 0) axes[k] = normalised(sum[k], kZero);
   // Breadth-first depth from each chart's border, inside the chart.
   std::vector<std::uint32_t> depth(nt, kNone), frontier;
   for (std::uint32_t t = 0; t < nt; ++t)
     for (int j = 0; j < 3; ++j) {
       const std::uint32_t u = s.across[t][j];
-      if (u == kNoTriangle || chart[u] != chart[t]) {
+      if (u == EdgeTable::kNone || chart[u] != chart[t]) {
         depth[t] = 0;
         frontier.push_back(t);
         break;
@@ -226,7 +233,7 @@ void fit(const Surface& s, const std::vector<std::uint32_t>& chart, std::vector<
     const std::uint32_t t = frontier[i];
     for (int j = 0; j < 3; ++j) {
       const std::uint32_t u = s.across[t][j];
-      if (u != kNoTriangle && depth[u] == kNone && chart[u] == chart[t]) {
+      if (u != EdgeTable::kNone && depth[u] == kNone && chart[u] == chart[t]) {
         depth[u] = depth[t] + 1;
         frontier.push_back(u);
       }
@@ -235,7 +242,7 @@ void fit(const Surface& s, const std::vector<std::uint32_t>& chart, std::vector<
   std::vector<std::uint32_t> inner(nc, kNone);
   for (std::uint32_t t = 0; t < nt; ++t) {
     std::uint32_t& best = inner[chart[t]];
-    const V3& axis = axes[chart[t]];
+    const Vec3d& axis = axes[chart[t]];
     if (best == kNone || depth[t] > depth[best] ||
         (depth[t] == depth[best] && dot(s.normal[t], axis) > dot(s.normal[best], axis)))
       best = t;
@@ -244,10 +251,10 @@ void fit(const Surface& s, const std::vector<std::uint32_t>& chart, std::vector<
 }
 
 // Drops charts that no triangle took and numbers the rest by their lowest triangle.
-std::uint32_t renumber(std::vector<std::uint32_t>& chart, std::vector<std::uint32_t>& seeds, std::vector<V3>& axes) {
+std::uint32_t renumber(std::vector<std::uint32_t>& chart, std::vector<std::uint32_t>& seeds, std::vector<Vec3d>& axes) {
   std::vector<std::uint32_t> order(seeds.size(), kNone);
   std::vector<std::uint32_t> kept_seeds;
-  std::vector<V3> kept_axes;
+  std::vector<Vec3d> kept_axes;
   for (std::uint32_t& c : chart) {
     if (order[c] == kNone) {
       order[c] = std::uint32_t(kept_seeds.size());
@@ -265,7 +272,7 @@ std::uint32_t renumber(std::vector<std::uint32_t>& chart, std::vector<std::uint3
 // mean: smallest chart first, into the neighbour it shares the longest visible seam with.
 void mergeCharts(const Surface& s, std::vector<std::uint32_t>& chart, std::uint32_t count) {
   std::vector<std::vector<std::uint32_t>> members(count);
-  std::vector<V3> sum(count, V3{0, 0, 0});
+  std::vector<Vec3d> sum(count, Vec3d{0, 0, 0});
   std::vector<double> area(count, 0.0);
   for (std::uint32_t t = 0; t < chart.size(); ++t) {
     members[chart[t]].push_back(t);
@@ -273,7 +280,7 @@ void mergeCharts(const Surface& s, std::vector<std::uint32_t>& chart, std::uint3
     area[chart[t]] += s.area[t];
   }
   const auto fits = [&](std::uint32_t a, std::uint32_t b) {
-    const V3 axis = normalized(add(sum[a], sum[b]));
+    const Vec3d axis = normalised(add(sum[a], sum[b]), kZero);
     for (std::uint32_t k : {a, b})
       for (std::uint32_t t : members[k])
         if (dot(s.normal[t], axis) < kMaxChartCos) return false;
@@ -291,7 +298,7 @@ void mergeCharts(const Surface& s, std::vector<std::uint32_t>& chart, std::uint3
       for (std::uint32_t t : members[a])
         for (int j = 0; j < 3; ++j) {
           const std::uint32_t u = s.across[t][j];
-          if (u == kNoTriangle || chart[u] == a) continue;
+          if (u == EdgeTable::kNone || chart[u] == a) continue;
           const auto it =
               std::find_if(shared.begin(), shared.end(), [&](const auto& p) { return p.second == chart[u]; });
           if (it == shared.end())
@@ -319,7 +326,7 @@ void mergeCharts(const Surface& s, std::vector<std::uint32_t>& chart, std::uint3
 // whose normal is within that chart's cone, moves there (it is a leaf of its own chart, so
 // that stays connected). A few passes, each deciding from the pass before.
 void smoothBorders(const Surface& s, std::vector<std::uint32_t>& chart, std::uint32_t count) {
-  std::vector<V3> sum(count, V3{0, 0, 0});
+  std::vector<Vec3d> sum(count, Vec3d{0, 0, 0});
   for (std::uint32_t t = 0; t < chart.size(); ++t)
     sum[chart[t]] = add(sum[chart[t]], scale(s.normal[t], std::max(s.area[t], 1e-30)));
   for (int pass = 0; pass < kBorderPasses; ++pass) {
@@ -329,8 +336,8 @@ void smoothBorders(const Surface& s, std::vector<std::uint32_t>& chart, std::uin
       const auto& n = s.across[t];
       for (int j = 0; j < 3; ++j) {
         const std::uint32_t u = n[j], v = n[(j + 1) % 3];
-        if (u == kNoTriangle || v == kNoTriangle || chart[u] == chart[t] || chart[u] != chart[v]) continue;
-        if (dot(s.normal[t], normalized(sum[chart[u]])) < kMaxChartCos) continue;
+        if (u == EdgeTable::kNone || v == EdgeTable::kNone || chart[u] == chart[t] || chart[u] != chart[v]) continue;
+        if (dot(s.normal[t], normalised(sum[chart[u]], kZero)) < kMaxChartCos) continue;
         next[t] = chart[u];
         moved = true;
         break;
@@ -339,7 +346,7 @@ void smoothBorders(const Surface& s, std::vector<std::uint32_t>& chart, std::uin
     if (!moved) break;
     for (std::uint32_t t = 0; t < chart.size(); ++t)
       if (next[t] != chart[t]) {
-        const V3 w = scale(s.normal[t], std::max(s.area[t], 1e-30));
+        const Vec3d w = scale(s.normal[t], std::max(s.area[t], 1e-30));
         sum[chart[t]] = sub(sum[chart[t]], w);
         sum[next[t]] = add(sum[next[t]], w);
       }
@@ -357,7 +364,7 @@ std::uint32_t splitPieces(const Surface& s, std::vector<std::uint32_t>& chart) {
     queue.assign(1, t);
     for (std::size_t q = 0; q < queue.size(); ++q)
       for (std::uint32_t u : s.across[queue[q]])
-        if (u != kNoTriangle && piece[u] == kNone && chart[u] == chart[t]) piece[u] = count, queue.push_back(u);
+        if (u != EdgeTable::kNone && piece[u] == kNone && chart[u] == chart[t]) piece[u] = count, queue.push_back(u);
     ++count;
   }
   chart = std::move(piece);
@@ -372,7 +379,7 @@ std::vector<std::uint32_t> segmentCharts(const SurfaceMesh& mesh) {
   if (nt == 0) return chart;
   const Surface s = describe(mesh);
   std::vector<std::uint32_t> seeds;
-  std::vector<V3> axes;
+  std::vector<Vec3d> axes;
   fillUnassigned(s, chart, seeds, axes);
   for (int iteration = 0; iteration < kLloydIterations; ++iteration) {
     renumber(chart, seeds, axes);

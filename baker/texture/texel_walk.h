@@ -6,9 +6,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/vec3.h"
 #include "texture/bake_maps.h"
 #include "texture/dilate_texels.h"
-#include "texture/mesh_helpers.h"
 
 namespace rockbake::texture_detail {
 
@@ -23,8 +23,8 @@ struct SurfacePoint {
     return weight[0] * values[vertex[0]] + weight[1] * values[vertex[1]] + weight[2] * values[vertex[2]];
   }
   template <class A>
-  V3 vector(const std::vector<A>& values) const {
-    V3 r{0, 0, 0};
+  Vec3d vector(const std::vector<A>& values) const {
+    Vec3d r{0, 0, 0};
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
         r[std::size_t(k)] += weight[std::size_t(i)] * values[vertex[std::size_t(i)]][std::size_t(k)];

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "preset/schema.h"
+
 namespace rockbake {
 
 void checkTextureParams(const TextureParams& p) {
@@ -14,7 +16,7 @@ void checkTextureParams(const TextureParams& p) {
   if (p.ao_rays < 1 || p.ao_rays > 1024) fail("ao_rays: " + std::to_string(p.ao_rays) + " is outside 1..1024");
   if (!(p.ao_distance >= 0) || !std::isfinite(p.ao_distance)) fail("ao_distance: must be 0 or a positive length");
   if (!(p.cage >= 0) || !std::isfinite(p.cage)) fail("cage: must be 0 or a positive length");
-  if (!(p.voxel_size >= 0) || !std::isfinite(p.voxel_size)) fail("voxel_size: must be 0 or a positive length");
+  if (p.maps.empty()) fail("maps: lists no map");
 }
 
 bool wantsMap(const TextureParams& params, TextureMap map) {
@@ -22,19 +24,12 @@ bool wantsMap(const TextureParams& params, TextureMap map) {
 }
 
 std::string mapName(TextureMap map) {
-  switch (map) {
-    case TextureMap::BaseColor:
-      return "base_color";
-    case TextureMap::Normal:
-      return "normal";
-    case TextureMap::Orm:
-      return "orm";
-    case TextureMap::Height:
-      return "height";
-    case TextureMap::Mask:
-      return "mask";
-  }
-  return "unknown";
+  return schema::nameOf(map);
+}
+
+int lodMapSize(const TextureParams& params, int lod) {
+  if (params.lod_size == LodMapSize::Full || lod <= 0) return params.size;
+  return std::max(params.size >> std::min(lod, 30), std::min(params.size, 256));
 }
 
 }  // namespace rockbake

@@ -16,9 +16,11 @@
 
 namespace rockbake {
 
-TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source, LodLayout layout,
-                          const TextureParams& params, const std::string& name, const std::filesystem::path& folder) {
+TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
+                          const TextureSetRequest& request) {
+  const TextureParams& params = request.params;
   checkTextureParams(params);
+  std::filesystem::create_directories(request.folder);
   TextureSet set;
   Stopwatch clock;
   std::clock_t cpu = std::clock();
@@ -29,44 +31,33 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   };
   const RaySource rays(source);
   step("ray scene");
-  const RockLook look(params.seed, rays.radius(), params.voxel_size, source.durability_range);
+  const RockLook look(request.seed, rays.radius(), request.voxel_size, source.durability_range, request.varied);
   const double cage = params.cage > 0 ? params.cage : 0.1 * rays.radius();
 
   for (std::size_t k = 0; k < lods.size(); ++k) {
     const std::string lod = "lod" + std::to_string(k);
-    UvAtlas atlas;
-    if (layout == LodLayout::OwnAtlas) {
-      atlas = buildUvAtlas(lods[k], params);
-      step(lod + " atlas");
-    } else {
-      for (const SurfaceMesh* m : {&lods[k].rock, &lods[k].colluvium})
-        if (!m->triangles.empty() && m->uvs.size() != m->positions.size())
-          throw std::invalid_argument("bakeTextureSet: LOD" + std::to_string(k) + "'s " + m->name +
-                                      " surface has no uvs in LOD0's layout");
-      atlas.meshes = lods[k];
-      atlas.texels_per_unit = texelDensity(lods[k], params.size);
-    }
+    const int size = lodMapSize(params, int(k));
+    UvAtlas atlas = buildUvAtlas(lods[k], size, params.padding);
+    step(lod + " atlas");
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
     step(lod + " tangents");
-    TexelMap texels = rasterizeUv(atlas.meshes, params.size);
+    TexelMap texels = rasterizeUv(atlas.meshes, size);
     dilateTexels(texels);
     const TexelHits hits = traceTexels(atlas.meshes, texels, rays, cage);
     set.missed += hits.missed;
     step(lod + " rays");
 
     const LodBake bake{&atlas.meshes, &texels, &hits, &source};
-    const bool own_maps = k == 0 || layout == LodLayout::OwnAtlas;  // else LOD0's base colour, ORM and mask serve
     std::array<std::vector<float>, 2> occlusion;
-    if (own_maps && wantsMap(params, TextureMap::Orm)) {
-      occlusion = vertexOcclusion(atlas.meshes, rays, params);
+    if (wantsMap(params, TextureMap::Orm)) {
+      occlusion = vertexOcclusion(atlas.meshes, rays, params, request.seed);
       step(lod + " occlusion");
     }
-    const int suffix = k == 0 ? -1 : int(k);
     const auto record = [&](TextureMap map, int channels, int bits, const char* space) {
-      set.files.push_back({textureFileName(name, map, map == TextureMap::Normal ? int(k) : suffix), map, int(k),
-                           params.size, channels, bits, space});
-      return folder / set.files.back().file;
+      const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
+      set.files.push_back({textureFileName(request.name, map, suffix), map, int(k), size, channels, bits, space});
+      return request.folder / set.files.back().file;
     };
     // Each map is made, then written and freed, before the next: one map in memory at a time.
     const auto timed = [&](TextureMap map, auto&& image, auto&& write) {
@@ -75,7 +66,6 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       step(lod + " " + mapName(map) + " file");
     };
     for (TextureMap map : params.maps) {
-      if (map != TextureMap::Normal && !own_maps) continue;
       switch (map) {
         case TextureMap::Normal:
           timed(map, bakeNormalMap(bake),
@@ -101,10 +91,17 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       }
     }
     set.charts.push_back(atlas.charts);
+    set.sizes.push_back(size);
     set.texels_per_unit.push_back(atlas.texels_per_unit);
     set.lods.push_back(std::move(atlas.meshes));
   }
   return set;
+}
+
+const TextureFile* findTextureFile(const TextureSet& set, int lod, TextureMap map) {
+  for (const TextureFile& f : set.files)
+    if (f.lod == lod && f.map == map) return &f;
+  return nullptr;
 }
 
 }  // namespace rockbake

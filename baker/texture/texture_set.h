@@ -1,16 +1,17 @@
-// A texture set for an asset's LODs (docs/textures.md): each LOD's tangent frames
-// (tangents.h), its texels traced to the bake source (trace_texels.h), and its maps
-// (bake_maps.h) written one at a time into `folder` (texture_files.h): LOD0's as
-// <name>_BaseColor.png, <name>_Normal_LOD0.png, <name>_ORM.png, <name>_Height.exr and
-// <name>_Mask.png, and a normal map per further LOD k, <name>_Normal_LOD<k>.png. The LOD
-// chain either shares LOD0's UV layout (the Megascans convention: the LODs were simplified
-// from LOD0 after its atlas, seams kept, so one base colour, ORM and mask serve them all) or
-// each LOD gets an atlas of its own (uv_atlas.h) and with it its own base colour, ORM and mask,
-// named with "_LOD<k>" (the height is LOD0's displacement alone). Occlusion is cast once, on
-// the source (ambient_occlusion.h). Only `params.maps` are made. Deterministic: the files
-// are byte-identical at any thread count.
+// A texture set for an asset's LODs (docs/textures.md): each LOD unwrapped into an atlas of
+// its own (uv_atlas.h), its tangent frames (tangents.h), its texels traced to the bake source
+// (trace_texels.h), and its maps (bake_maps.h) written one at a time into `folder`
+// (texture_files.h), at lodMapSize(params, k) texels: LOD0's as <name>_BaseColor.png,
+// <name>_Normal_LOD0.png, <name>_ORM.png, <name>_Height.exr and <name>_Mask.png, LOD k's as
+// <name>_BaseColor_LOD<k>.png, <name>_Normal_LOD<k>.png, <name>_ORM_LOD<k>.png and
+// <name>_Mask_LOD<k>.png (the height is LOD0's displacement alone). Each LOD's own atlas keeps
+// the LOD chain's triangle budgets: a layout shared with LOD0 would have the simplifier keep
+// LOD0's seams (docs/textures.md, "The LOD chain"). Occlusion is cast per LOD vertex
+// (ambient_occlusion.h). Only `params.maps` are made. Deterministic: the files are
+// byte-identical at any thread count.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,9 +21,13 @@
 
 namespace rockbake {
 
-enum class LodLayout {
-  SharedWithLod0,  // every LOD comes with uvs in LOD0's layout
-  OwnAtlas,        // every LOD is unwrapped here, each into an atlas of its own
+struct TextureSetRequest {
+  TextureParams params;          // the preset's texture: block
+  std::uint64_t seed = 0;        // the preset's seed: occlusion rays and the colour's noise
+  double voxel_size = 0.0;       // the grid's h, world units: the per-voxel colour variation's scale (0: none)
+  bool varied = true;            // the rock's look (rock_look.h) on the palette; false: its colours exactly
+  std::string name;              // the asset's: file names <name>_BaseColor.png, …
+  std::filesystem::path folder;  // where the files go (created if missing)
 };
 
 struct TextureFile {
@@ -38,6 +43,7 @@ struct TextureFile {
 struct TextureSet {
   std::vector<AssetMeshes> lods;        // the LODs with uvs and tangents, vertices split along seams
   std::vector<std::size_t> charts;      // per LOD
+  std::vector<int> sizes;               // per LOD: its maps' width and height, texels
   std::vector<double> texels_per_unit;  // per LOD: texel density, texels per world unit
   std::vector<TextureFile> files;       // in the order written
   std::size_t missed = 0;               // covered texels whose rays found no source within the cage
@@ -50,12 +56,14 @@ struct TextureSet {
   std::vector<Step> steps;
 };
 
-// `lods`: LOD0 first, triangle meshes with normals, attributes and colours (and uvs, with
-// SharedWithLod0). `source`: the bake source (the refined surfaces before simplification,
-// in the same frame). Throws std::invalid_argument on bad params or a LOD without uvs where
-// they are needed, std::runtime_error on a failure to pack or write (the files written
-// before it stay; the caller's folder is the unit of atomicity).
-TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source, LodLayout layout,
-                          const TextureParams& params, const std::string& name, const std::filesystem::path& folder);
+// `lods`: LOD0 first, triangle meshes with normals, attributes and colours. `source`: the bake
+// source (the refined surfaces before simplification, in the same frame). Throws
+// std::invalid_argument on bad params, std::runtime_error on a failure to pack or write (the
+// files written before it stay; the caller's folder is the unit of atomicity).
+TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
+                          const TextureSetRequest& request);
+
+// LOD `lod`'s file of `map` in `set`, or nullptr when none was made.
+const TextureFile* findTextureFile(const TextureSet& set, int lod, TextureMap map);
 
 }  // namespace rockbake

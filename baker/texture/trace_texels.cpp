@@ -5,11 +5,11 @@
 
 #include <tbb/parallel_for.h>
 
-#include "texture/mesh_helpers.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 
-using namespace texture_detail;
+constexpr Vec3d kZero{0.0, 0.0, 0.0};  // normalised()'s fallback: a zero vector stays zero
 
 std::array<double, 3> texelBarycentrics(const SurfaceMesh& mesh, std::uint32_t triangle, int x, int y, int size) {
   const auto& t = mesh.triangles[triangle];
@@ -72,12 +72,12 @@ TexelHits traceTexels(const AssetMeshes& lod, const TexelMap& texels, const RayS
       const SurfaceMesh& m = ref.surface == 0 ? lod.rock : lod.colluvium;
       const auto w = texelBarycentrics(m, ref.triangle, x, y, size);
       const auto& tri = m.triangles[ref.triangle];
-      V3 p{0, 0, 0}, n{0, 0, 0};
+      Vec3d p{0, 0, 0}, n{0, 0, 0};
       for (int i = 0; i < 3; ++i) {
-        p = add(p, scale(toV3(m.positions[tri[i]]), w[i]));
-        n = add(n, scale(toV3(m.normals[tri[i]]), w[i]));
+        p = add(p, scale(toVec3d(m.positions[tri[i]]), w[i]));
+        n = add(n, scale(toVec3d(m.normals[tri[i]]), w[i]));
       }
-      n = normalized(n);
+      n = normalised(n, kZero);
       surface[lanes] = ref.surface;
       origin[lanes] = {float(p[0]), float(p[1]), float(p[2])};
       direction[lanes] = {float(n[0]), float(n[1]), float(n[2])};

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
 #include <tbb/parallel_for.h>
 
-#include "texture/mesh_helpers.h"
+#include "core/edge_table.h"
+#include "core/vec3.h"
 #include "texture/pack_charts.h"
 #include "texture/parameterize_chart.h"
 #include "texture/segment_charts.h"
@@ -30,7 +33,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
   std::vector<std::vector<std::uint32_t>> pending(count);
   for (std::uint32_t t = 0; t < chart_of.size(); ++t) pending[chart_of[t]].push_back(t);
 
-  const auto across = texture_detail::triangleNeighbours(mesh.triangles);
+  const EdgeTable edges(mesh.triangles);
   std::vector<FlatChart> done;
   while (!pending.empty()) {
     std::vector<ChartUv> flat(pending.size());
@@ -41,7 +44,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
       if (flat[i].status == ChartStatus::Ok) {
         done.push_back({surface, std::move(pending[i]), std::move(flat[i])});
       } else {
-        auto halves = splitChart(mesh, across, pending[i]);
+        auto halves = splitChart(mesh, edges, pending[i]);
         for (auto& half : halves) {
           std::sort(half.begin(), half.end());
           if (!half.empty()) again.push_back(std::move(half));
@@ -103,8 +106,10 @@ SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const Fla
 
 }  // namespace
 
-UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
-  checkTextureParams(params);
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
+  if (size < 1 || size > 8192 || padding < 0 || padding > 64)
+    throw std::invalid_argument("buildUvAtlas: a " + std::to_string(size) + "² map with " + std::to_string(padding) +
+                                "-texel gutters is outside 1 … 8192 texels and 0 … 64 texels");
   const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
   std::array<std::vector<FlatChart>, 2> flat;
   for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
@@ -114,7 +119,7 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
     for (auto& c : charts) packed.push_back({c.uv.uv, c.uv.corners});
   UvAtlas atlas;
   atlas.charts = packed.size();
-  atlas.texels_per_unit = packCharts(packed, params.size, params.padding);
+  atlas.texels_per_unit = packCharts(packed, size, padding);
   std::vector<std::vector<std::array<double, 2>>> uv;
   for (PackChart& c : packed) uv.push_back(std::move(c.uv));
 
@@ -132,13 +137,12 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params) {
 }
 
 double texelDensity(const AssetMeshes& meshes, int size) {
-  using namespace texture_detail;
   std::vector<std::pair<double, double>> density;  // (texels per unit, area)
   double total = 0;
   for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
     if (m->uvs.size() != m->positions.size()) continue;
     for (const auto& t : m->triangles) {
-      const V3 a = toV3(m->positions[t[0]]), b = toV3(m->positions[t[1]]), c = toV3(m->positions[t[2]]);
+      const Vec3d a = toVec3d(m->positions[t[0]]), b = toVec3d(m->positions[t[1]]), c = toVec3d(m->positions[t[2]]);
       const double area = 0.5 * length(cross(sub(b, a), sub(c, a)));
       const auto &p = m->uvs[t[0]], &q = m->uvs[t[1]], &r = m->uvs[t[2]];
       const double uv =

@@ -8,14 +8,13 @@
 //
 // The result holds the same triangles in the same order, with vertices split along the seams
 // (each copy keeps its position, normal, attributes and colour) and `uvs` in [0, 1]; tangents
-// are left empty (tangents.h fills them). Deterministic: a pure function of the meshes and
-// `params.size` and `params.padding` (the thread count does not matter).
+// are left empty (tangents.h fills them). Deterministic: a pure function of the meshes, `size`
+// and `padding` (the thread count does not matter).
 #pragma once
 
 #include <cstddef>
 
 #include "core/surface_mesh.h"
-#include "texture/texture_params.h"
 
 namespace rockbake {
 
@@ -25,9 +24,11 @@ struct UvAtlas {
   double texels_per_unit = 0.0;  // texel density, texels per world unit (0 when there is no surface)
 };
 
-// Triangle-only meshes (quads are ignored). Throws std::invalid_argument on bad params and
-// std::runtime_error when the charts do not fit the map at any density.
-UvAtlas buildUvAtlas(const AssetMeshes& meshes, const TextureParams& params);
+// Triangle-only meshes (quads are ignored). `size`: the map's width and height, texels (1 …
+// 8192); `padding`: empty texels between charts (0 … 64). Throws std::invalid_argument on a size
+// or padding outside those ranges and std::runtime_error when the charts do not fit the map
+// at any density.
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding);
 
 // The texel density of meshes with uvs in a `size`² map: the area-weighted median over the
 // triangles of sqrt(texel area / surface area), texels per world unit (0 without area).

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The .glb exports (the asset and its LODs) pass the Khronos glTF validator
-# (npm package gltf-validator, installed by scripts/setup.sh).
+# (npm package gltf-validator, installed by scripts/setup.sh), untextured and
+# textured: with a texture set the validator reads every map each GLB names
+# from textures/ beside it (scripts/gltf-validator/validate.mjs).
 # Usage: gltf_validator_test.sh ROCKBAKE SOURCE_DIR
 set -euo pipefail
 rockbake=$1
@@ -30,7 +32,22 @@ YAML
 "$rockbake" bake "$work/asset.yaml" -o "$work/out" --no-render
 # The house chain: LODs as triangle counts.
 "$rockbake" bake "$work/asset.yaml" -o "$work/counts" --no-render --set name=glb-counts --set 'mesh.lods=[900, 300]'
-files=("$work"/out/glb-check/*.glb "$work"/counts/glb-counts/*.glb)
-[ "${#files[@]}" -eq 6 ] || { echo "FAIL: expected rock.glb and two LODs twice, found ${files[*]}" >&2; exit 1; }
-node "$validator" "${files[@]}"
+# With a texture set (docs/textures.md): TEXCOORD_0, TANGENT and the maps by relative URI.
+"$rockbake" bake "$work/asset.yaml" -o "$work/textured" --no-render --set name=glb-textured \
+  --set 'texture={size: 256, ao_rays: 4}'
+files=("$work"/out/glb-check/*.glb "$work"/counts/glb-counts/*.glb "$work"/textured/glb-textured/*.glb)
+[ "${#files[@]}" -eq 9 ] || { echo "FAIL: expected rock.glb and two LODs thrice, found ${files[*]}" >&2; exit 1; }
+report=$(node "$validator" "${files[@]}") || { echo "$report"; exit 1; }
+echo "$report"
+# The validator read the maps: a textured GLB that names an image it cannot load fails above,
+# and one whose maps went missing is caught here too.
+for glb in "$work"/textured/glb-textured/*.glb; do
+  grep -qa '"TANGENT"' "$glb" || { echo "FAIL: $glb has no TANGENT" >&2; exit 1; }
+  grep -qa 'textures/glb-textured_BaseColor' "$glb" || { echo "FAIL: $glb names no base colour map" >&2; exit 1; }
+done
+mv "$work/textured/glb-textured/textures" "$work/textured/glb-textured/maps-moved"
+if node "$validator" "$work/textured/glb-textured/rock.glb" >/dev/null; then
+  echo "FAIL: the validator passed a GLB whose maps are missing" >&2
+  exit 1
+fi
 echo "PASS: ${#files[@]} files, no validator errors"

@@ -33,6 +33,7 @@
 #include "mesh/surface_detail.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/bake_meshes.h"
+#include "pipeline/export_meshes.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -628,7 +629,8 @@ TEST(AssetGlb, PackedMaskInColor1MatchesTheNamedAttributes) {
   test::TempDir dir;
   Preset p = weatheredPreset();
   p.exports = {"glb"};
-  const MeshStageResult r = bakeMeshes(weatheredRock(), p, dir.path());
+  const MeshStageResult r = bakeMeshes(weatheredRock(), p);
+  exportMeshes(r, nullptr, p, dir.path());
   const tinygltf::Model model = readGlb(dir.path() / "rock.glb");
   ASSERT_FALSE(model.meshes.empty());
   const auto& prim = model.meshes[0].primitives[0];

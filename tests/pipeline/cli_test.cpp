@@ -27,7 +27,8 @@ TEST(Cli, VersionAndHelpExitZero) {
   EXPECT_NE(version.output.find("rockbake "), std::string::npos);
   const auto help = runRockbake({"bake", "--help"});
   EXPECT_EQ(help.exit_status, 0);
-  for (const char* flag : {"--threads", "--seed", "--set", "--resolution", "--no-mesh", "--no-render", "--out"})
+  for (const char* flag :
+       {"--threads", "--seed", "--set", "--resolution", "--no-mesh", "--no-render", "--no-textures", "--out"})
     EXPECT_NE(help.output.find(flag), std::string::npos) << flag;
 }
 

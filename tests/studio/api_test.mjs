@@ -147,11 +147,12 @@ try {
     `bake final bakes the preset's own resolution at the studio's time (${manifest.preset.grid.resolution}, ${manifest.preset.time})`);
   // The same as the saved preset baked from the command line.
   ok((await api(url, '/api/save', { name: 'goblin-final' })).status === 200, 'save at the bake\'s time');
-  const cli = spawnSync(rockbake, ['bake', path.join(dir, 'goblin-final.yaml'), '--no-render', '-o', path.join(dir, 'cli')],
-    { encoding: 'utf8' });
+  // Under the studio's asset name: the GLBs name their maps by it (textures/goblin_BaseColor.png).
+  const cli = spawnSync(rockbake, ['bake', path.join(dir, 'goblin-final.yaml'), '--no-render', '--set', 'name=goblin',
+    '-o', path.join(dir, 'cli')], { encoding: 'utf8' });
   ok(cli.status === 0, `the saved preset bakes (${cli.stderr})`);
-  for (const f of ['rock.vdb', 'rock.glb'])
-    ok(Buffer.compare(fs.readFileSync(path.join(asset, f)), fs.readFileSync(path.join(dir, 'cli', 'goblin-final', f))) === 0,
+  for (const f of ['rock.vdb', 'rock.glb', 'rock_lod4.glb', 'textures/goblin_BaseColor.png', 'textures/goblin_Normal_LOD4.png'])
+    ok(Buffer.compare(fs.readFileSync(path.join(asset, f)), fs.readFileSync(path.join(dir, 'cli', 'goblin', f))) === 0,
       `bake final's ${f} is the saved preset's, byte for byte`);
 } catch (e) {
   failure = e;

@@ -62,12 +62,9 @@ struct Baked {
 };
 
 Baked prepare(const AssetMeshes& lod, const AssetMeshes& source, const RaySource& rays, int size, double cage) {
-  TextureParams params;
-  params.size = size;
-  params.padding = 4;
   Baked b;
   b.source = &source;
-  b.atlas = buildUvAtlas(lod, params);
+  b.atlas = buildUvAtlas(lod, size, 4);
   computeTangents(b.atlas.meshes.rock);
   computeTangents(b.atlas.meshes.colluvium);
   b.texels = rasterizeUv(b.atlas.meshes, size);
@@ -224,7 +221,7 @@ TEST(Occlusion, CreviceDarkerThanConvexTopOpenPlaneNearOne) {
   params.ao_rays = 64;
   const int size = 512;
   const Baked b = prepare(spheres, spheres, rays, size, 0.05);
-  const auto occlusion = vertexOcclusion(b.atlas.meshes, rays, params);
+  const auto occlusion = vertexOcclusion(b.atlas.meshes, rays, params, 0);
   const RockLook look(1, rays.radius(), 0.0, {0.0f, 1.0f});
   const TextureImage<std::uint8_t> orm = bakeOrm(b.bake(), occlusion, look);
   // The texels nearest a point in the crevice and the left sphere's outer pole.
@@ -259,7 +256,7 @@ TEST(Occlusion, CreviceDarkerThanConvexTopOpenPlaneNearOne) {
   const AssetMeshes plane = test::assetOf(test::surfaceOf(p, t));
   const RaySource plane_rays(plane);
   const Baked pb = prepare(plane, plane, plane_rays, 256, 0.05);
-  const auto open = vertexOcclusion(pb.atlas.meshes, plane_rays, params);
+  const auto open = vertexOcclusion(pb.atlas.meshes, plane_rays, params, 0);
   const TextureImage<std::uint8_t> plane_orm = bakeOrm(pb.bake(), open, look);
   for (std::size_t i = 0; i < plane_orm.pixels.size(); i += 3) ASSERT_EQ(plane_orm.pixels[i], 255);
 }
@@ -303,6 +300,7 @@ TEST(BaseColor, EachLayerShowsItsColourWhereItIs) {
 // A PNG's bit depth, colour type and whether it carries an sRGB chunk.
 struct PngHeader {
   int depth = 0, colour_type = 0;
+  unsigned width = 0;
   bool srgb = false;
 };
 PngHeader readPngHeader(const std::filesystem::path& file) {
@@ -315,6 +313,7 @@ PngHeader readPngHeader(const std::filesystem::path& file) {
     png_init_io(png, f);
     png_read_info(png, info);
     h.depth = png_get_bit_depth(png, info);
+    h.width = png_get_image_width(png, info);
     h.colour_type = png_get_color_type(png, info);
     h.srgb = png_get_valid(png, info, PNG_INFO_sRGB) != 0;
   }
@@ -372,20 +371,24 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   const AssetMeshes& source = test::weatheredRock().meshes;
   std::vector<AssetMeshes> lods{source};
   lods.push_back(simplifyLods(source, {{0.2}}).front());
-  TextureParams params;
-  params.size = 512;
-  params.ao_rays = 8;
-  params.seed = 3;
-  params.voxel_size = 2.0 / 32;
   test::TempDir one, two;
+  TextureSetRequest request;
+  request.params.size = 512;
+  request.params.lod_size = LodMapSize::Full;
+  request.params.ao_rays = 8;
+  request.seed = 3;
+  request.voxel_size = 2.0 / 32;
+  request.name = "small";
   TextureSet sets[2];
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    sets[0] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", one.path());
+    request.folder = one.path();
+    sets[0] = bakeTextureSet(lods, source, request);
   }
   {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    sets[1] = bakeTextureSet(lods, source, LodLayout::OwnAtlas, params, "small", two.path());
+    request.folder = two.path();
+    sets[1] = bakeTextureSet(lods, source, request);
   }
   // LOD0: five maps; LOD1: all but the height.
   ASSERT_EQ(sets[0].files.size(), 9u);
@@ -423,27 +426,46 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   for (float h : height) ASSERT_LT(std::abs(h), 1e-3f);
 }
 
-TEST(TextureSet, ChainInLod0sLayoutGetsNormalMapsOnly) {
-  TextureParams params;
-  params.size = 256;
-  params.ao_rays = 4;
+TEST(TextureSet, HalvedSizesNameEveryLodsMapsAndRefuseBadParams) {
   const AssetMeshes sphere = test::assetOf(test::sphereSurface(3));
-  const AssetMeshes lod0 = buildUvAtlas(sphere, params).meshes;
   test::TempDir dir;
-  // A "LOD1" in LOD0's layout (here LOD0 itself): its normal map alone is baked.
-  const TextureSet set = bakeTextureSet({lod0, lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path());
+  TextureSetRequest request;
+  request.params.size = 512;
+  request.params.ao_rays = 4;
+  request.params.maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm};
+  request.name = "s";
+  request.folder = dir.path() / "textures";
+  // LOD0 at 512, LOD1 at 256, LOD2 at 256 (the floor), each with its own atlas and files.
+  const TextureSet set = bakeTextureSet({sphere, sphere, sphere}, sphere, request);
   std::vector<std::string> files;
-  for (const TextureFile& f : set.files) files.push_back(f.file);
-  EXPECT_EQ(files, (std::vector<std::string>{"s_BaseColor.png", "s_Normal_LOD0.png", "s_ORM.png", "s_Height.exr",
-                                             "s_Mask.png", "s_Normal_LOD1.png"}));
-  EXPECT_EQ(test::readBytes(dir.path() / "s_Normal_LOD0.png"), test::readBytes(dir.path() / "s_Normal_LOD1.png"));
-  EXPECT_GT(set.texels_per_unit[0], 0.0);
-  // Without uvs a LOD cannot be in LOD0's layout.
-  EXPECT_THROW(bakeTextureSet({lod0, sphere}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
-               std::invalid_argument);
-  params.size = 3000;
-  EXPECT_THROW(bakeTextureSet({lod0}, sphere, LodLayout::SharedWithLod0, params, "s", dir.path()),
-               std::invalid_argument);
+  for (const TextureFile& f : set.files) files.push_back(f.file + "@" + std::to_string(f.size));
+  EXPECT_EQ(files,
+            (std::vector<std::string>{"s_BaseColor.png@512", "s_Normal_LOD0.png@512", "s_ORM.png@512",
+                                      "s_BaseColor_LOD1.png@256", "s_Normal_LOD1.png@256", "s_ORM_LOD1.png@256",
+                                      "s_BaseColor_LOD2.png@256", "s_Normal_LOD2.png@256", "s_ORM_LOD2.png@256"}));
+  EXPECT_EQ(set.sizes, (std::vector<int>{512, 256, 256}));
+  EXPECT_EQ(readPngHeader(dir.path() / "textures" / "s_ORM_LOD1.png").width, 256u);
+  // The same LOD at half the map size: half the texels per world unit, within the packer's rounding.
+  EXPECT_NEAR(set.texels_per_unit[1] / set.texels_per_unit[0], 0.5, 0.05);
+  ASSERT_NE(findTextureFile(set, 2, TextureMap::Orm), nullptr);
+  EXPECT_EQ(findTextureFile(set, 2, TextureMap::Orm)->file, "s_ORM_LOD2.png");
+  EXPECT_EQ(findTextureFile(set, 0, TextureMap::Height), nullptr);
+  request.params.size = 3000;
+  EXPECT_THROW(bakeTextureSet({sphere}, sphere, request), std::invalid_argument);
+}
+
+TEST(TextureSet, LodMapSizes) {
+  TextureParams p;
+  p.size = 2048;
+  EXPECT_EQ(lodMapSize(p, 0), 2048);
+  EXPECT_EQ(lodMapSize(p, 1), 1024);
+  EXPECT_EQ(lodMapSize(p, 3), 256);
+  EXPECT_EQ(lodMapSize(p, 4), 256);
+  p.size = 256;
+  EXPECT_EQ(lodMapSize(p, 2), 256);
+  p.lod_size = LodMapSize::Full;
+  p.size = 1024;
+  EXPECT_EQ(lodMapSize(p, 4), 1024);
 }
 
 TEST(Dilate, EveryEmptyTexelCopiesTheNearestCoveredOne) {

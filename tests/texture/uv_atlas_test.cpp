@@ -124,7 +124,7 @@ TextureParams atlasParams(int size, int padding) {
 TEST(UvAtlas, SphereInUnitSquareWithoutOverlapWithGutters) {
   const AssetMeshes sphere = test::assetOf(test::sphereSurface(4));
   const TextureParams params = atlasParams(512, 8);
-  const UvAtlas atlas = buildUvAtlas(sphere, params);
+  const UvAtlas atlas = buildUvAtlas(sphere, params.size, params.padding);
   expectSameSurface(sphere.rock, atlas.meshes.rock);
   EXPECT_GE(atlas.charts, 2u);  // a closed surface must be cut
   const AtlasCheck check = checkAtlas(atlas, params);
@@ -138,7 +138,7 @@ TEST(UvAtlas, WeatheredRockBothSurfaces) {
   const AssetMeshes& rock = test::weatheredRock().meshes;
   ASSERT_FALSE(rock.colluvium.triangles.empty());
   const TextureParams params = atlasParams(1024, 8);
-  const UvAtlas atlas = buildUvAtlas(rock, params);
+  const UvAtlas atlas = buildUvAtlas(rock, params.size, params.padding);
   expectSameSurface(rock.rock, atlas.meshes.rock);
   expectSameSurface(rock.colluvium, atlas.meshes.colluvium);
   const AtlasCheck check = checkAtlas(atlas, params);
@@ -153,7 +153,7 @@ TEST(UvAtlas, TorusAndArchWithThroughHoles) {
   const SurfaceMesh torus = test::torusSurface(1.0, 0.35, 48, 24);
   ASSERT_EQ(test::eulerCharacteristic(torus), 0);
   const TextureParams params = atlasParams(512, 6);
-  const UvAtlas t = buildUvAtlas(test::assetOf(torus), params);
+  const UvAtlas t = buildUvAtlas(test::assetOf(torus), params.size, params.padding);
   expectSameSurface(torus, t.meshes.rock);
   AtlasCheck check = checkAtlas(t, params);
   EXPECT_EQ(check.contested, 0u);
@@ -163,7 +163,7 @@ TEST(UvAtlas, TorusAndArchWithThroughHoles) {
   // The arch stands on the ground (its rock is a capped, bent column), and its apron of debris
   // is holed through where the legs stand: a closed surface of genus > 0.
   ASSERT_LE(test::eulerCharacteristic(arch.colluvium), 0);
-  const UvAtlas a = buildUvAtlas(arch, atlasParams(1024, 8));
+  const UvAtlas a = buildUvAtlas(arch, 1024, 8);
   expectSameSurface(arch.rock, a.meshes.rock);
   expectSameSurface(arch.colluvium, a.meshes.colluvium);
   check = checkAtlas(a, atlasParams(1024, 8));
@@ -193,7 +193,7 @@ TEST(UvAtlas, ManyComponentsAndSlivers) {
   const SurfaceMesh spheres = test::surfaceOf(many.positions, many.triangles);
   const TextureParams params = atlasParams(512, 4);
   for (const SurfaceMesh* m : {&spheres, &disk}) {
-    const UvAtlas atlas = buildUvAtlas(test::assetOf(*m), params);
+    const UvAtlas atlas = buildUvAtlas(test::assetOf(*m), params.size, params.padding);
     expectSameSurface(*m, atlas.meshes.rock);
     const AtlasCheck check = checkAtlas(atlas, params);
     EXPECT_EQ(check.contested, 0u);
@@ -204,7 +204,8 @@ TEST(UvAtlas, ManyComponentsAndSlivers) {
 TEST(UvAtlas, Deterministic) {
   const AssetMeshes& rock = test::weatheredRock().meshes;
   const TextureParams params = atlasParams(512, 4);
-  const UvAtlas a = buildUvAtlas(rock, params), b = buildUvAtlas(rock, params);
+  const UvAtlas a = buildUvAtlas(rock, params.size, params.padding),
+                b = buildUvAtlas(rock, params.size, params.padding);
   EXPECT_EQ(a.meshes.rock.uvs, b.meshes.rock.uvs);
   EXPECT_EQ(a.meshes.rock.triangles, b.meshes.rock.triangles);
   EXPECT_EQ(a.texels_per_unit, b.texels_per_unit);

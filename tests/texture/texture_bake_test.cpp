@@ -1,0 +1,171 @@
+// The texture set in the bake, through the real executable (docs/textures.md, docs/formats.md):
+// the `texture:` block, --no-textures, the files and what names them.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+using test::readBytes;
+using test::runRockbake;
+using test::TempDir;
+using test::writeText;
+
+// The small preset with colluvium, two LODs, OBJ and GLB, and a small texture set.
+std::string texturedPreset() {
+  return std::string(test::kSmallPreset) +
+         "colluvium: {yield: 0.6}\n"
+         "mesh: {subdivision: 1, lods: [0.5, 0.25]}\n"
+         "export: [obj, glb]\n"
+         "texture: {size: 256, ao_rays: 4}\n";
+}
+
+// Every file under `folder`, by path relative to it, with its bytes.
+std::map<std::string, std::string> filesUnder(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(folder))
+    if (e.is_regular_file()) files[fs::relative(e.path(), folder).string()] = readBytes(e.path());
+  return files;
+}
+
+TEST(TextureBake, MapsAndMeshesAreByteIdenticalAtOneAndTwoThreads) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  std::map<std::string, std::string> outputs[2];
+  for (int threads : {1, 2}) {
+    const fs::path out = dir.path() / ("t" + std::to_string(threads));
+    const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render",
+                                     "--threads", std::to_string(threads)});
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+    outputs[threads - 1] = filesUnder(out / "small" / "textures");
+    for (const char* mesh : {"rock.glb", "rock_lod1.glb", "rock_lod2.glb", "rock.obj", "rock.mtl"})
+      outputs[threads - 1][mesh] = readBytes(out / "small" / mesh);
+  }
+  // LOD0: base colour, normal, ORM, height, mask; LOD1 and LOD2: all but the height.
+  EXPECT_EQ(outputs[0].size(), 5u + 4u + 4u + 5u);
+  for (const char* file : {"small_BaseColor.png", "small_Normal_LOD0.png", "small_ORM.png", "small_Height.exr",
+                           "small_Mask.png", "small_BaseColor_LOD1.png", "small_Normal_LOD2.png", "small_ORM_LOD2.png"})
+    EXPECT_TRUE(outputs[0].count(file)) << file;
+  for (const auto& [file, bytes] : outputs[0]) {
+    ASSERT_TRUE(outputs[1].count(file)) << file;
+    EXPECT_TRUE(bytes == outputs[1].at(file)) << file << ": 1 vs 2 threads differ";
+  }
+}
+
+TEST(TextureBake, AssetJsonObjAndStatsDescribeTheSet) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  const fs::path out = dir.path() / "out";
+  const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  const fs::path asset = out / "small";
+  const auto json = nlohmann::json::parse(readBytes(asset / "asset.json"));
+  // Halved per LOD below LOD0, at least 256: every LOD's maps at 256 here.
+  ASSERT_EQ(json["lods"].size(), 3u);
+  for (const auto& lod : json["lods"]) {
+    EXPECT_EQ(lod["map_size"], 256);
+    EXPECT_GT(lod["texel_density"].get<double>(), 0.0);
+  }
+  std::map<std::string, int> per_type;
+  for (const auto& m : json["maps"]) {
+    ++per_type[m["type"].get<std::string>()];
+    EXPECT_TRUE(fs::is_regular_file(asset / m["file"].get<std::string>())) << m["file"];
+    const std::string space = m["colour_space"];
+    EXPECT_EQ(space, m["type"] == "base_color" ? "srgb" : "linear") << m["file"];
+  }
+  EXPECT_EQ(per_type,
+            (std::map<std::string, int>{{"base_color", 3}, {"height", 1}, {"mask", 3}, {"normal", 3}, {"orm", 3}}));
+  // The OBJ: texture coordinates on every face corner, the maps in the MTL.
+  const std::string obj = readBytes(asset / "rock.obj"), mtl = readBytes(asset / "rock.mtl");
+  EXPECT_NE(obj.find("\nvt "), std::string::npos);
+  EXPECT_EQ(obj.find("//"), std::string::npos) << "a face without its texture coordinate";
+  EXPECT_NE(mtl.find("map_Kd textures/small_BaseColor.png"), std::string::npos) << mtl;
+  EXPECT_NE(mtl.find("map_Bump -bm 1 textures/small_Normal_LOD0.png"), std::string::npos) << mtl;
+  // The texture phase is timed, between the mesh stage and the exports.
+  const auto stats = nlohmann::json::parse(readBytes(asset / "stats.json"));
+  EXPECT_GT(stats["stages"]["texture"].get<double>(), 0.0);
+  // The manifest lists the maps among the outputs.
+  const auto manifest = nlohmann::json::parse(readBytes(asset / "manifest.json"));
+  bool listed = false;
+  for (const auto& o : manifest["outputs"]) listed = listed || o["path"] == "textures/small_ORM_LOD2.png";
+  EXPECT_TRUE(listed);
+}
+
+TEST(TextureBake, NoTexturesMakesNoneAndChangesTheInputHash) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  const fs::path out = dir.path() / "out";
+  ASSERT_EQ(runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render"}).exit_status,
+            0);
+  const std::string textured_hash = nlohmann::json::parse(readBytes(out / "small" / "asset.json"))["input_hash"];
+  const auto result =
+      runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render", "--no-textures"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  // The bake replaces the folder: the earlier texture set goes with it.
+  EXPECT_FALSE(fs::exists(out / "small" / "textures"));
+  const auto json = nlohmann::json::parse(readBytes(out / "small" / "asset.json"));
+  EXPECT_FALSE(json.contains("maps"));
+  EXPECT_NE(json["input_hash"], textured_hash);
+  const std::string glb = readBytes(out / "small" / "rock.glb");
+  EXPECT_EQ(glb.find("TEXCOORD_0"), std::string::npos);
+  EXPECT_EQ(glb.find("baseColorTexture"), std::string::npos);
+  EXPECT_EQ(readBytes(out / "small" / "rock.obj").find("\nvt "), std::string::npos);
+}
+
+TEST(TextureBake, LibraryAndResumeTakeNoTexturesToo) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  writeText(dir.path() / "lib.yaml", "- preset: small.yaml\n");
+  const fs::path out = dir.path() / "out";
+  // A library with --no-textures: no texture set; the same library without it is not
+  // taken for done (the input hash counts the texture block) and bakes one.
+  auto result =
+      runRockbake({"library", (dir.path() / "lib.yaml").string(), "-o", out.string(), "--no-render", "--no-textures"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  ASSERT_EQ(fs::exists(out / "small" / "manifest.json"), true) << result.output;
+  EXPECT_FALSE(fs::exists(out / "small" / "textures"));
+  result = runRockbake({"library", (dir.path() / "lib.yaml").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_TRUE(fs::is_regular_file(out / "small" / "textures" / "small_BaseColor.png"));
+
+  // resume from a checkpoint of the textured bake, without textures and with them.
+  const fs::path baked = dir.path() / "baked";
+  result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", baked.string(), "--no-render",
+                        "--checkpoint-every", "0.25"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  fs::path checkpoint;
+  for (const auto& e : fs::directory_iterator(baked / "small" / "checkpoints")) checkpoint = e.path();
+  ASSERT_FALSE(checkpoint.empty());
+  const fs::path plain = dir.path() / "plain", textured = dir.path() / "textured";
+  result = runRockbake({"resume", checkpoint.string(), "-o", plain.string(), "--no-render", "--no-textures"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_FALSE(fs::exists(plain / "small" / "textures"));
+  result = runRockbake({"resume", checkpoint.string(), "-o", textured.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_TRUE(fs::is_regular_file(textured / "small" / "textures" / "small_ORM.png"));
+}
+
+TEST(TextureBake, BadTextureKeysExitTwoNamingTheKey) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  const auto out = (dir.path() / "out").string();
+  const auto size = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out, "--set", "texture.size=300"});
+  EXPECT_EQ(size.exit_status, 2);
+  EXPECT_NE(size.output.find("texture.size"), std::string::npos) << size.output;
+  EXPECT_NE(size.output.find("power of two"), std::string::npos) << size.output;
+  const auto maps =
+      runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out, "--set", "texture.maps=[normal, normal]"});
+  EXPECT_EQ(maps.exit_status, 2);
+  EXPECT_NE(maps.output.find("listed twice"), std::string::npos) << maps.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "small"));
+}
+
+}  // namespace
+}  // namespace rockbake
