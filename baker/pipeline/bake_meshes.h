@@ -29,6 +29,13 @@ struct MeshStageResult {
   std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
   std::array<double, 3> pivot{};                // footprintPivot: world position of the meshes' origin
   std::size_t refined_triangles = 0;            // both surfaces before simplification
+  int subdivision_levels = 0;                   // Catmull-Clark levels spent (mesh/refinement_levels.h)
+  // The bake source, kept only when asked for (keep_bake_source): the finest
+  // surface, both surfaces as LOD0 was simplified from them (extraction,
+  // subdivision where spent, volume, detail, palette, about the pivot), what the
+  // texture stage traces to. Empty otherwise: it is the stage's largest mesh
+  // (goblin at 384: 1.3 M triangles, about 50 MB), freed once LOD0 is made.
+  AssetMeshes bake_source;
   double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0, export_seconds = 0;
 };
 
@@ -38,10 +45,11 @@ bool exportsFormat(const Preset& preset, const std::string& format);
 // Surfaces, attributes, subdivision and palette, in memory (no files). The
 // curvature attribute is exposure under `preset.bubbles`: pass the bubble
 // graph in effect when the simulation ended (its latest keyframe's).
-MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);
 
 // buildMeshes, then the files the preset's `export:` list asks for.
 // Throws std::runtime_error on failure (nothing half-written).
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir);
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, const std::filesystem::path& asset_dir,
+                           bool keep_bake_source = false);
 
 }  // namespace rockbake
