@@ -6,14 +6,13 @@
 // Without detail (absent, or amplitude 0) nothing is measured in world units,
 // and every level the preset asks for is spent.
 //
-// The extraction's facets, a voxel wide on a field smoothed over a voxel or
-// more, lie within `mesh.max_error` of that field on their own at any
-// resolution; what subdivision adds below the voxel is room for the detail.
-// At the house resolution (every shipped preset at its own resolution) the
-// voxels are coarser than that and the preset's level is spent as before; at a
-// hero resolution (goblin at 384: voxels of 0.016 against grains of 0.08) none
-// is, and LOD0 is simplified from the extraction directly: a quarter of the
-// triangles to make and to take out again.
+// What a level adds below the voxel is room for the detail: LOD0 keeps as
+// close to the extraction as to a subdivided surface. At the house resolution
+// (every shipped preset at its own resolution) the voxels are coarser than
+// that and the preset's level is spent as before; at a hero resolution (goblin
+// at 384: voxels of 0.016 against grains of 0.08) none is, and LOD0 is
+// simplified from the extraction directly: a quarter of the triangles to make
+// and to take out again.
 #pragma once
 
 #include <optional>
