@@ -4,7 +4,7 @@
 //                          [--out DIR] [--dump] [--no-fidelity]
 //
 // Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
-// stage's functions, keeping the bake source (the refined surface before simplification) and
+// stage (buildMeshes), keeping the bake source (the surface LOD0 was simplified from) and
 // the LODs the current pipeline makes. Then, for each LOD layout (default both): "shared", the
 // LOD chain simplified from LOD0 after its atlas with the seams kept (meshoptimizer, as the
 // mesh stage will), or "own", every LOD of the current pipeline unwrapped on its own; bakes the
@@ -38,17 +38,12 @@
 
 #include <meshoptimizer.h>
 #include "core/hash.h"
-#include "core/mesh_checks.h"
 #include "core/png_image.h"
 #include "core/stopwatch.h"
 #include "inputs/resolve_shape.h"
-#include "mesh/bake_attributes.h"
-#include "mesh/extract_surfaces.h"
-#include "mesh/fold_over_repair.h"
-#include "mesh/mesh_defects.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
-#include "mesh/surface_detail.h"
+#include "pipeline/bake_meshes.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -69,37 +64,14 @@ struct Asset {
   double voxel_size = 0;
 };
 
-// buildMeshes' recipe (pipeline/bake_meshes.cpp) with the refined surface kept: the bake source.
+// The mesh stage as the bake runs it (pipeline/bake_meshes.h), with the bake source kept.
 Asset bakeAsset(const Preset& preset) {
   const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(preset), preset), preset).rock;
-  std::shared_ptr<const SmoothedSdf> sdf;
-  AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &sdf);
-  const std::vector<float> exposure = exposureField(rock, preset);
-  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  const SubdivideParams levels{preset.mesh.subdivision};
-  meshes.rock = subdivideSurface(meshes.rock, levels);
-  meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
-  const GridLayout& g = rock.layout;
-  projectOntoField(meshes.rock, sdf.get(), g.ground);
-  const double voxel = g.h * g.h * g.h;
-  const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
-  matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
-  sdf = offsetField(sdf, delta, g.ground);
-  projectOntoField(meshes.rock, sdf.get(), g.ground);
-  repairFoldOvers(meshes.rock);
-  repairFoldOvers(meshes.colluvium);
-  const PaletteParams palette = paletteParams(rock, preset.bake);
-  if (preset.mesh.detail)
-    displaceSurface(meshes.rock,
-                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
-  updateBounds(meshes);
-  meshes.durability_range = {palette.durability_min, palette.durability_max};
-  meshes = applyPalette(std::move(meshes), palette);
-  movePivot(meshes, footprintPivot(rock));
+  MeshStageResult meshes = buildMeshes(rock, preset, /*keep_bake_source=*/true);
   Asset a;
-  a.voxel_size = g.h;
-  a.source = meshes;
-  a.lods.push_back(simplifyToError(meshes, preset.mesh.max_error * g.h));
+  a.voxel_size = rock.layout.h;
+  a.source = std::move(meshes.bake_source);
+  a.lods.push_back(std::move(meshes.meshes));
   for (AssetMeshes& lod : simplifyLods(a.lods[0], {preset.mesh.lods})) a.lods.push_back(std::move(lod));
   return a;
 }
