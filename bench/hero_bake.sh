@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# With --meshes first, the whole bake but the render instead (below: MESHES).
+#
 # The hero-resolution bake, before and after in one run: goblin `--no-mesh` at
 # a high resolution, simulation time per phase, peak memory, and whether the
 # builds' rock.vdb files are the same. Figures: bench/README.md.
@@ -24,6 +26,10 @@
 #   single-threaded workers).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = --meshes ]; then
+  shift
+  exec bash bench/hero_mesh_bake.sh "$@"
+fi
 baseline=${1:?usage: bench/hero_bake.sh BASELINE_ROCKBAKE [RESOLUTION] [OUT]}
 resolution=${2:-384}
 out=${3:-/tmp/hero-bake}

@@ -63,10 +63,10 @@ struct Asset {
 // The mesh stage as the bake runs it (pipeline/bake_meshes.h), with its bake source.
 Asset bakeAsset(const Preset& preset) {
   const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(preset), preset), preset).rock;
-  MeshStageResult meshes = bakeMeshes(rock, preset);
+  MeshStageResult meshes = bakeMeshes(rock, preset, /*keep_bake_source=*/true);
   Asset a;
   a.voxel_size = rock.layout.h;
-  a.source = std::move(meshes.source);
+  a.source = std::move(meshes.bake_source);
   a.lods.push_back(std::move(meshes.meshes));
   for (AssetMeshes& lod : meshes.lods) a.lods.push_back(std::move(lod));
   return a;

@@ -4,12 +4,15 @@
 #include "core/triangle_geometry.h"
 
 #include "core/openvdb_support.h"
+#include "core/stopwatch.h"
 #include "mesh/subdivide.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include <spdlog/spdlog.h>
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
@@ -125,17 +128,19 @@ void restoreDistanceBound(openvdb::FloatGrid& sdf, const Crossed& crossed, const
 }
 
 // `params.smoothing` passes of a width-1 Gaussian, every sample kept on its side.
-void smoothKeepingSides(openvdb::FloatGrid& sdf, const MaterialAt& material_at, const ExtractParams& params) {
+double smoothKeepingSides(openvdb::FloatGrid& sdf, const MaterialAt& material_at, const ExtractParams& params) {
   const int passes = int(std::lround(std::clamp(params.smoothing, 0.0, 4.0)));
-  if (passes == 0) return;
+  if (passes == 0) return 0.0;
   openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(sdf);
   if (params.preview) {
     filter.setNormCount(1);
     filter.setSpatialScheme(openvdb::math::FIRST_BIAS);
   }
   for (int i = 0; i < passes; ++i) filter.gaussian(1);
+  Stopwatch clock;
   const Crossed crossed = holdSides(sdf, material_at);
   restoreDistanceBound(sdf, crossed, material_at, params.preview ? kPreviewHalfWidth : kHalfWidth);
+  return clock.lap();
 }
 
 // Intersects the field with the half-space z >= 0: phi = max(phi, -z). Below
@@ -187,7 +192,9 @@ SurfaceMesh polygonise(const openvdb::FloatGrid& sdf, const GridLayout& g, const
 
 SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const ExtractParams& params, const char* name,
                             openvdb::FloatGrid::Ptr* field) {
+  Stopwatch clock;
   const openvdb::BoolGrid::Ptr mask = occupancy(rock, material);
+  const double occupancy_seconds = clock.lap();
   if (!mask) {
     SurfaceMesh empty;
     empty.name = name;
@@ -197,10 +204,17 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
   // no dilation: the surface encloses exactly the voxels before smoothing.
   openvdb::FloatGrid::Ptr sdf =
       openvdb::tools::topologyToLevelSet(*mask, params.preview ? kPreviewHalfWidth : kHalfWidth, 0, 0, 0);
-  smoothKeepingSides(*sdf, MaterialAt{rock, material}, params);
+  const double level_set_seconds = clock.lap();
+  const double hold_seconds = smoothKeepingSides(*sdf, MaterialAt{rock, material}, params);
+  const double smooth_seconds = clock.lap() - hold_seconds;
   if (rock.layout.ground) clipAtGround(*sdf, rock.layout);
   if (field) *field = sdf;
-  return polygonise(*sdf, rock.layout, name);
+  SurfaceMesh mesh = polygonise(*sdf, rock.layout, name);
+  spdlog::debug(
+      "{} extraction: occupancy {:.2f} s, level set {:.2f} s, smoothing {:.2f} s, sides held {:.2f} s, "
+      "clip and polygonise {:.2f} s",
+      name, occupancy_seconds, level_set_seconds, smooth_seconds, hold_seconds, clock.lap());
+  return mesh;
 }
 
 }  // namespace

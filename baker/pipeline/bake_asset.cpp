@@ -216,12 +216,13 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   return weathered;
 }
 
-// The meshes in memory: LOD0, the LOD chain and the bake source (pipeline/bake_meshes.h); none with --no-mesh.
+// The meshes in memory: LOD0, the LOD chain and, for a texture set, the bake source (pipeline/bake_meshes.h);
+// none with --no-mesh.
 std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered) {
   bake.checkCancel();
   if (!bake.options.mesh) return std::nullopt;
   bake.progress(0.7, "mesh");
-  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing);
+  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
   bake.timings.mesh =
       MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds, meshes.simplify_seconds};
   bake.clock.lap();
@@ -232,8 +233,8 @@ std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered) {
 // baked from the bake source, which is dropped here, used or not (it is the largest thing the meshes hold).
 std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::optional<MeshStageResult>& meshes) {
   if (!meshes) return std::nullopt;
-  const AssetMeshes source = std::move(meshes->source);
-  meshes->source = AssetMeshes{};
+  const AssetMeshes source = std::move(meshes->bake_source);
+  meshes->bake_source = AssetMeshes{};
   const Preset& preset = bake.preset;
   if (!preset.texture) return std::nullopt;
   bake.checkCancel();

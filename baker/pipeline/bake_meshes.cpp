@@ -13,6 +13,7 @@
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/fold_over_repair.h"
+#include "mesh/refinement_levels.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"
@@ -24,7 +25,7 @@ bool exportsFormat(const Preset& preset, const std::string& format) {
   return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
 }
 
-MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source) {
   MeshStageResult r;
   Stopwatch clock;
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &r.rock_sdf);
@@ -34,13 +35,16 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
   meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
   r.attributes_seconds = clock.lap();
 
-  const SubdivideParams levels{preset.mesh.subdivision};
+  const GridLayout& g = rock.layout;
+  // Subdivision serves coarse grids only: a level is spent while the voxels are
+  // too coarse to carry the detail (mesh/refinement_levels.h).
+  r.subdivision_levels = refinementLevels(preset.mesh.subdivision, g.h, preset.mesh.detail);
+  const SubdivideParams levels{r.subdivision_levels};
   meshes.rock = subdivideSurface(meshes.rock, levels);
   meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
   // Catmull-Clark pulls the surface inside the field it was extracted from: put
   // it back on it. Then give back the voxels' volume smoothing rounded off.
-  projectOntoField(meshes.rock, r.rock_sdf.get(), rock.layout.ground);
-  const GridLayout& g = rock.layout;
+  projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
   const double voxel = g.h * g.h * g.h;
   const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
   matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
@@ -67,16 +71,18 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset) {
 
   r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
   r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h);
-  r.source = std::move(meshes);
+  if (keep_bake_source) r.bake_source = std::move(meshes);
   r.simplify_seconds = clock.lap();
-  spdlog::debug("{}: refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, {} triangles",
-                preset.name, r.refined_triangles, r.meshes.rock.positions.size(), r.meshes.rock.triangles.size(),
-                r.meshes.colluvium.positions.size(), r.meshes.colluvium.triangles.size());
+  spdlog::debug(
+      "{}: {} subdivision level(s), refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, "
+      "{} triangles",
+      preset.name, r.subdivision_levels, r.refined_triangles, r.meshes.rock.positions.size(),
+      r.meshes.rock.triangles.size(), r.meshes.colluvium.positions.size(), r.meshes.colluvium.triangles.size());
   return r;
 }
 
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset) {
-  MeshStageResult r = buildMeshes(rock, preset);
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source) {
+  MeshStageResult r = buildMeshes(rock, preset, keep_bake_source);
   if (exportsFormat(preset, "glb")) {
     Stopwatch clock;
     r.lods = simplifyLods(r.meshes, {preset.mesh.lods});

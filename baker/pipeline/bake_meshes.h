@@ -7,7 +7,8 @@
 // The bake source is the finest surface the bake made — extraction, subdivision, volume
 // match and detail, coloured and about the pivot, before any simplification — that LOD0 and
 // the chain were simplified from: what the texture stage bakes its maps from
-// (docs/textures.md). It is the largest thing the stage makes; a caller drops it once done.
+// (docs/textures.md). It is the largest thing the stage makes; a caller asks for it only when
+// it makes textures, and drops it once done.
 #pragma once
 
 #include <memory>
@@ -23,26 +24,29 @@ namespace rockbake {
 struct SmoothedSdf;  // core/openvdb_support.h
 
 struct MeshStageResult {
-  AssetMeshes meshes;                           // LOD0: attributed, coloured, about the pivot
-  std::vector<AssetMeshes> lods;                // LOD1, … (made with glb only)
-  AssetMeshes source;                           // the bake source (above), in LOD0's frame
+  AssetMeshes meshes;             // LOD0: attributed, coloured, about the pivot
+  std::vector<AssetMeshes> lods;  // LOD1, … (made with glb only)
+  // The bake source (above), in LOD0's frame, kept only when asked for (keep_bake_source): empty
+  // otherwise, freed once LOD0 is made (goblin at 384: 1.3 M triangles, about 50 MB).
+  AssetMeshes bake_source;
   std::vector<std::string> lod_files;           // LOD0, LOD1, …: the file holding each (empty: none)
   std::shared_ptr<const SmoothedSdf> rock_sdf;  // the field the rock surface was extracted from (for rock.vdb)
   std::array<double, 3> pivot{};                // footprintPivot: world position of the meshes' origin
   std::size_t refined_triangles = 0;            // both surfaces before simplification
+  int subdivision_levels = 0;                   // Catmull-Clark levels spent (mesh/refinement_levels.h)
   double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0;
 };
 
 // Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").
 bool exportsFormat(const Preset& preset, const std::string& format);
 
-// Surfaces, attributes, subdivision and palette, the bake source and LOD0, in memory (no
-// files; no LOD chain). The curvature attribute is exposure under `preset.bubbles`: pass the
+// Surfaces, attributes, subdivision and palette, LOD0 and (with keep_bake_source) the bake source, in
+// memory (no files; no LOD chain). The curvature attribute is exposure under `preset.bubbles`: pass the
 // bubble graph in effect when the simulation ended (its latest keyframe's).
-MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset);
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);
 
 // buildMeshes, then the LOD chain (`mesh.lods`) when the preset exports glb, and the name of
 // the file that will hold each LOD (`lod_files`). No files.
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset);
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);
 
 }  // namespace rockbake

@@ -507,7 +507,8 @@ const MapSpec<MeshParams>& meshSpec() {
           k("smoothing", &MeshParams::smoothing, numberIn(0.0, 4.0),
             "smoothing of the voxel surface before polygonising (rounded to whole passes)")
               .unit("Gaussian passes"),
-          k("subdivision", &MeshParams::subdivision, integer<int>(0, 3), "Catmull-Clark levels (OpenSubdiv)")
+          k("subdivision", &MeshParams::subdivision, integer<int>(0, 3),
+            "the most Catmull-Clark levels (OpenSubdiv); fewer where the voxels already carry mesh.detail")
               .unit("levels"),
           k("max_error", &MeshParams::max_error, numberIn(0.0, 8.0, true), "how far LOD0 may leave the refined surface")
               .unit("voxels"),

@@ -582,7 +582,7 @@ TEST(MeshStage, WritesTheExportsThePresetAsks) {
   p.exports = {"ply", "glb"};
   const VoxelRock& rock = bandedRock();
   const Stopwatch wall;
-  const MeshStageResult r = bakeMeshes(rock, p);
+  const MeshStageResult r = bakeMeshes(rock, p, /*keep_bake_source=*/true);
   const double export_seconds = exportMeshes(r, nullptr, p, dir.path());
   const double wall_seconds = wall.elapsed();
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "rock.ply"));
@@ -598,8 +598,8 @@ TEST(MeshStage, WritesTheExportsThePresetAsks) {
   EXPECT_GT(export_seconds, 0.0);
   EXPECT_LE(r.extract_seconds + r.attributes_seconds + r.subdivide_seconds + export_seconds, wall_seconds);
   // The bake source: the refined surface LOD0 was simplified from, finer than it.
-  EXPECT_GT(r.source.rock.triangles.size(), r.meshes.rock.triangles.size());
-  EXPECT_EQ(r.source.rock.colors.size(), r.source.rock.positions.size());
+  EXPECT_GT(r.bake_source.rock.triangles.size(), r.meshes.rock.triangles.size());
+  EXPECT_EQ(r.bake_source.rock.colors.size(), r.bake_source.rock.positions.size());
 }
 
 TEST(MeshStage, BakeAssetWritesMeshesAndTimesTheStages) {

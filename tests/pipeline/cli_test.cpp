@@ -153,6 +153,39 @@ TEST(Cli, RockVdbIsByteIdenticalOnEveryAlphaPath) {
   for (std::size_t i = 1; i < outputs.size(); ++i) EXPECT_TRUE(outputs[i] == outputs[0]) << "run " << i << " differs";
 }
 
+// docs/model.md §10 with meshes: rock.vdb, LOD0 and the LOD chain byte-identical at 1
+// and 2 threads, through one subdivision level (goblin's house detail) and
+// through none (grains five voxels wide: LOD0 simplified from the extraction,
+// as at a hero resolution; docs/meshes.md).
+TEST(Cli, MeshesAreByteIdenticalAcrossThreadCounts) {
+  for (const char* period : {"0.08", "0.6"}) {
+    TempDir dir;
+    std::vector<std::map<std::string, std::string>> outputs;
+    for (const char* threads : {"1", "2"}) {
+      const std::string out = (dir.path() / threads).string();
+      const auto result =
+          runRockbake({"-v", "bake", presetPath("goblin.yaml"), "--resolution", "48", "--no-render", "--set",
+                       std::string("mesh.detail.period=") + period, "-o", out, "--threads", threads});
+      ASSERT_EQ(result.exit_status, 0) << result.output;
+      EXPECT_NE(result.output.find(std::string(period) == "0.6" ? "0 subdivision level(s)" : "1 subdivision level(s)"),
+                std::string::npos)
+          << result.output;
+      std::map<std::string, std::string> files;
+      for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(out) / "goblin")) {
+        const std::string name = entry.path().filename().string();
+        if (name.ends_with(".vdb") || name.ends_with(".ply") || name.ends_with(".glb"))
+          files[name] = readBytes(entry.path());
+      }
+      outputs.push_back(std::move(files));
+    }
+    ASSERT_EQ(outputs[0].size(), 9u) << "rock.vdb, two PLYs, rock.glb, four LODs and collision.glb";
+    for (const auto& [name, bytes] : outputs[0]) {
+      ASSERT_TRUE(outputs[1].count(name)) << name;
+      EXPECT_TRUE(bytes == outputs[1].at(name)) << period << ": " << name << " differs at 1 and 2 threads";
+    }
+  }
+}
+
 // The whole recipe, rendered small: bake writes meshes and a render; `render`
 // re-renders the asset folder with another template without re-simulating.
 TEST(Cli, BakeRendersAndRenderReRendersTheAssetFolder) {
