@@ -69,8 +69,9 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # The shared libraries' packages come from dpkg-shlibdeps (dpkg-dev, and `file`); what the
 # executable runs or opens by name is added by hand: POV-Ray renders (render/povray.h),
-# DejaVu Sans labels contact sheets (render/font_text.h).
+# DejaVu Sans labels contact sheets (render/font_text.h), FFmpeg encodes turntable movies
+# (render/turntable_movie.h).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "povray, fonts-dejavu-core")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "povray, fonts-dejavu-core, ffmpeg")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "slurm-client")
 include(CPack)

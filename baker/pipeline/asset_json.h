@@ -6,7 +6,7 @@
 //    "pivot": "footprint-centre-on-ground", "up_axis": "z" (PLY, VDB) / "y" (GLB, OBJ),
 //    "lods": [{"level", "file", "triangles", "vertices"}, ..],   // level 0 first; both surfaces counted
 //    "average_color": {"srgb": "#rrggbb", "linear": [r, g, b]},  // area-weighted over LOD0
-//    "preview": "render.png" | null, "input_hash"}
+//    "preview": "render.png" | null, "movie": "turntable.mp4" | null, "input_hash"}
 //
 // Everything in it is a function of the bake's inputs (no times, no host).
 #pragma once
@@ -35,6 +35,7 @@ struct AssetDescription {
   double units_per_meter = 1.0;
   std::vector<AssetLod> lods;  // level 0 first
   std::string preview;         // relative path, empty: none
+  std::string movie;           // the turntable movie, relative path, empty: none
   std::string input_hash;
 };
 

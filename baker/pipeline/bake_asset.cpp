@@ -266,6 +266,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes) {
   for (std::size_t i = 0; i < meshes->lods.size(); ++i)
     asset.lods.push_back({meshes->lod_files.at(i + 1), &meshes->lods[i]});
   asset.preview = bake.options.render ? "render.png" : "";
+  asset.movie = bake.options.render && preset.render.turntable_frames > 0 ? "turntable.mp4" : "";
   const ManifestInputs& inputs = bake.options.manifest;
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
   asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);

@@ -622,6 +622,8 @@ Preset validate(const YAML::Node& root_node, Source& source, const std::filesyst
       const Field t = r.at("turntable");
       t.expectMap();
       if (t.has("frames")) p.render.turntable_frames = int(t.at("frames").integer(0, 360));
+      if (t.has("fps")) p.render.turntable_fps = int(t.at("fps").integer(1, 120));
+      if (t.has("lookdev")) p.render.turntable_lookdev = t.at("lookdev").boolean();
     }
   });
 

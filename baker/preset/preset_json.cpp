@@ -171,6 +171,13 @@ json presetToJson(const Preset& p) {
   out["render"] = {{"template", p.render.template_name}, {"width", p.render.width},
                    {"height", p.render.height},          {"quality", p.render.quality},
                    {"antialias", p.render.antialias},    {"turntable", {{"frames", p.render.turntable_frames}}}};
+  // The movie's rate and the look-dev set matter only with a turntable; without
+  // one they stay out, so that the input hashes of bakes without a turntable
+  // are what they were before the keys existed.
+  if (p.render.turntable_frames > 0) {
+    out["render"]["turntable"]["fps"] = p.render.turntable_fps;
+    out["render"]["turntable"]["lookdev"] = p.render.turntable_lookdev;
+  }
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include "render/povray.h"
 #include "render/preview.h"
 #include "render/scene.h"
+#include "render/turntable_movie.h"
 
 #ifndef ROCKBAKE_VERSION
 #define ROCKBAKE_VERSION "unknown"
@@ -115,13 +116,14 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     // a grid of them.
     t = Clock::now();
     for (int i = 0; i < frames; ++i) {
-      SceneFrame f{i, frames, 360.0 * i / frames};
+      SceneFrame f{i, frames, 360.0 * i / frames, r.params.turntable_lookdev};
       const CameraSetup cam = frameCamera(meshes, w, h, f.turntable_deg);
       const std::filesystem::path scene_rel = std::filesystem::path("turntable") / (frameName(i) + ".pov");
       const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
       // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
       // relative to the working directory (the asset folder).
-      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed), r.asset_dir / scene_rel);
+      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed),
+                 r.asset_dir / scene_rel);
       renderOne(r, threads, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
       out.turntable_frames.push_back(r.asset_dir / exr_rel);
     }
@@ -132,6 +134,15 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     writeContactSheet(out.turntable_frames, out.turntable_sheet_exr, metadataFor(r, -1, home));
     exrToPng(out.turntable_sheet_exr, out.turntable_sheet_png, ocio);
     out.seconds_post += since(t);
+    t = Clock::now();
+    TurntableMovieJob movie;
+    movie.frames = out.turntable_frames;
+    movie.target = out.turntable_movie = r.asset_dir / "turntable.mp4";
+    movie.fps = r.params.turntable_fps;
+    movie.ocio_config = ocio;
+    movie.cancel = r.cancel;
+    writeTurntableMovie(movie);
+    out.seconds_movie = since(t);
   }
   out.seconds_total = since(t0);
   return out;
