@@ -9,6 +9,8 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 const $ = (id) => document.getElementById(id);
 const state = { assets: [], selected: new Set(), current: null };
 window.reviewState = state;
+// For scripts and the browser test: the 3-D views once made.
+window.reviewViewers = () => ({ asset: assetViewer, compare: compareViewers });
 
 function message(text) { $('message').textContent = text || ''; }
 
@@ -206,7 +208,7 @@ class Viewer {
         material.onBeforeCompile = (shader) => {
           shader.vertexShader = shader.vertexShader
             .replace('#include <common>', '#include <common>\nattribute vec3 maskColor;')
-            .replace('#include <color_vertex>', 'vColor = vec4(maskColor, 1.0);');
+            .replace('#include <color_vertex>', 'vColor = maskColor;');
         };
         return material;
       }
@@ -225,6 +227,21 @@ class Viewer {
   }
 
   draw() { this.renderer.render(this.scene, this.camera); }
+
+  // The model's bounding box on the canvas, in canvas pixels {x0, y0, x1, y1}.
+  screenBox() {
+    const box = new THREE.Box3().setFromObject(this.model);
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (let i = 0; i < 8; ++i) {
+      const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z)
+        .project(this.camera);
+      const x = (p.x + 1) / 2 * this.canvas.width, y = (1 - p.y) / 2 * this.canvas.height;
+      x0 = Math.min(x0, x); x1 = Math.max(x1, x); y0 = Math.min(y0, y); y1 = Math.max(y1, y);
+    }
+    const clamp = (v, hi) => Math.max(0, Math.min(hi, Math.round(v)));
+    return { x0: clamp(x0, this.canvas.width), y0: clamp(y0, this.canvas.height),
+             x1: clamp(x1, this.canvas.width), y1: clamp(y1, this.canvas.height) };
+  }
 }
 
 let assetViewer = null;
@@ -259,7 +276,7 @@ async function openAsset(name) {
     tr.cells[1].textContent = v ?? '—';
     return tr;
   }));
-  $('a-preset').textContent = JSON.stringify(d.preset, null, 2);
+  $('a-preset').textContent = JSON.stringify(d.bake_preset, null, 2);
   const lod = $('a-lod');
   lod.replaceChildren(...d.files.lods.filter((l) => l.file.endsWith('.glb'))
     .map((l) => new Option(`LOD${l.level} (${l.triangles})`, l.file)));

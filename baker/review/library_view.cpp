@@ -122,7 +122,7 @@ std::optional<json> assetDetail(const fs::path& dir, const std::string& name, co
     d["asset"] = asset;
     d["lods"] = asset.is_object() ? asset.value("lods", json::array()) : json::array();
     d["stages"] = stats.is_object() ? stats.value("stages", json(nullptr)) : json(nullptr);
-    d["preset"] = stats.is_object() ? stats.value("preset", json(nullptr)) : json(nullptr);
+    d["bake_preset"] = stats.is_object() ? stats.value("preset", json(nullptr)) : json(nullptr);
     d["job"] = entry.contains("job") ? entry["job"] : json(nullptr);
     return d;
   }

@@ -24,8 +24,8 @@ nlohmann::json libraryIndexAssets(const std::filesystem::path& library_dir);
 nlohmann::json assetSummaries(const std::filesystem::path& library_dir, const nlohmann::json& verdicts);
 
 // The summary plus asset.json (`asset`), the per-LOD triangles (`lods`), the
-// bake's stage times (`stages`) and the preset as the bake ran it (`preset`,
-// every default filled in). Nothing when the index has no such asset.
+// bake's stage times (`stages`), the library job (`job`) and the preset as the
+// bake ran it (`bake_preset`, every default filled in). Nothing when the index has no such asset.
 std::optional<nlohmann::json> assetDetail(const std::filesystem::path& library_dir, const std::string& name,
                                           const nlohmann::json& verdicts);
 

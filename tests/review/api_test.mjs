@@ -36,7 +36,7 @@ try {
   check(glb.status === 200 && glb.body.subarray(0, 4).toString() === 'glTF', 'the LOD0 GLB is served');
 
   r = await api(url, '/api/assets/small-s1');
-  check(r.status === 200 && r.json.preset && r.json.preset.name === 'small-s1' && r.json.preset.seed === 1 && r.json.stages && r.json.lods.length >= 1,
+  check(r.status === 200 && r.json.bake_preset && r.json.bake_preset.name === 'small-s1' && r.json.bake_preset.seed === 1 && r.json.stages && r.json.lods.length >= 1,
     'GET /api/assets/<name> gives the preset as the bake ran it, stage times and LODs');
   r = await api(url, '/api/assets/nope');
   check(r.status === 404 && /no asset 'nope'/.test(r.json.error), 'an unknown asset is a 404 with a message');
