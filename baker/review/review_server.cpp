@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/error.h"
 #include "http/json_body.h"
 #include "http/local_server.h"
 #include "http/static_files.h"
@@ -103,8 +104,12 @@ std::vector<http::Route> reviewRoutes(const ReviewOptions& options, ReviewStore&
 
 int runReview(const ReviewOptions& options) {
   requirePage(options);
-  libraryIndexAssets(options.library_dir);  // a folder without a library is refused before listening
-  StopSignals signals;                      // first: every thread from here on inherits the blocked mask
+  // A folder without a library is the user's to fix (exit status 2), before anything listens.
+  if (!fs::is_regular_file(options.library_dir / "index.json"))
+    throw InputError({(options.library_dir / "index.json").string()}, "", "not found: review serves a baked library",
+                     "bake one first with `rockbake library LIBRARY.yaml -o " + options.library_dir.string() + "`");
+  libraryIndexAssets(options.library_dir);
+  StopSignals signals;  // first: every thread from here on inherits the blocked mask
   ReviewStore store(options.library_dir);
   http::LocalServer server(reviewRoutes(options, store));
   try {

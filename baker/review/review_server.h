@@ -26,8 +26,9 @@ struct ReviewOptions {
 std::vector<http::Route> reviewRoutes(const ReviewOptions& options, ReviewStore& store);
 
 // Serves until SIGINT or SIGTERM, then returns 0. Prints `review: http://HOST:PORT/`
-// on stdout once it listens. Throws std::runtime_error when OUT has no library
-// index, the address cannot be bound or the page's files are missing.
+// on stdout once it listens. Throws InputError when OUT has no index.json,
+// std::runtime_error when it is not an index, the address cannot be bound or
+// the page's files are missing.
 int runReview(const ReviewOptions& options);
 
 }  // namespace rockbake

@@ -4,6 +4,7 @@
 // and two servers) both kept, traversal (plain, encoded, a link out) refused,
 // bad requests answered 4xx while the server keeps serving.
 // Usage: node api_test.mjs ROCKBAKE SOURCE_DIR
+import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { api, bakeLibrary, check, makeLibrary, raw, startReview, stopReview, writeLibrary } from './library.mjs';
@@ -111,6 +112,11 @@ try {
   r = await api(url, '/api/assets');
   s1 = r.json.assets.find((a) => a.name === 'small-s1');
   check(s1.review && s1.review.status === 'needs-work' && s1.review.stale === true, 'after a re-bake with new inputs the verdict is stale');
+
+  // A folder that is not a library: exit 2, naming index.json, before listening.
+  const notLibrary = spawnSync(rockbake, ['review', dir, '--port', '0'], { encoding: 'utf8', timeout: 20000 });
+  check(notLibrary.status === 2 && /index\.json/.test(notLibrary.stderr) && /rockbake library/.test(notLibrary.stderr),
+    `a folder without index.json: exit 2 with what to do (${notLibrary.status})`);
 
   // Only this machine by default.
   check(/^http:\/\/127\.0\.0\.1:/.test(url), 'it listens on 127.0.0.1');
