@@ -61,6 +61,10 @@ try {
   }
   r = await raw(url, 'POST', '/api/review', '{"asset": ', { 'Content-Type': 'application/json' });
   check(r.status === 400, 'a body that is not JSON: 400');
+  r = await raw(url, 'POST', '/api/review', JSON.stringify({ asset: 'small-s1', status: 'approved' }),
+    { 'Content-Type': 'application/json', Origin: 'http://elsewhere.example' });
+  check(r.status === 403 && !JSON.parse(fs.readFileSync(reviewFile, 'utf8')).assets['small-s1'].status.startsWith('approved'),
+    'a POST from another page is refused (403) and changes nothing');
 
   // Traversal: plain, encoded, doubly encoded, and a link out of OUT.
   fs.symlinkSync('/etc/passwd', path.join(out, 'small-s1', 'passwd'));

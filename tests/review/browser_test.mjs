@@ -90,7 +90,12 @@ try {
   const drawn = await coverage(page, 'asset');
   check(drawn > 0.2, `the 3-D view draws the rock: ${(100 * drawn).toFixed(0)} % of its screen box differs from the background`);
   check(await page.evaluate(() => document.getElementById('a-movie').src.endsWith('/files/small-s1/turntable.mp4')),
-    'the asset view plays the turntable movie');
+    'the asset view shows the turntable movie');
+  const video = await until('the movie decoding', () => page.evaluate(() => {
+    const v = document.getElementById('a-movie');
+    return v.readyState >= 2 && v.videoWidth > 0 ? { width: v.videoWidth, height: v.videoHeight } : null;
+  }), 20);
+  check(video.width === 96 && video.height === 72, `chromium decodes the movie (${video.width} x ${video.height})`);
   for (const channel of ['normals', 'mask', 'base']) {
     await page.select('#a-channel', channel);
     await sleep(100);
