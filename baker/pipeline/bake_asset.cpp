@@ -251,6 +251,9 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes) {
   bake.timings.render = rendered.seconds_total;
   spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
                (bake.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
+  if (!rendered.turntable_movie.empty())
+    spdlog::info("{}: {} frames, the turntable in {:.1f} s and its movie in {:.2f} s", bake.preset.name,
+                 rendered.turntable_frames.size(), rendered.seconds_turntable, rendered.seconds_movie);
   bake.clock.lap();
 }
 
