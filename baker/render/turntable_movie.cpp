@@ -7,9 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <ctime>
 #include <system_error>
 #include <thread>
 
@@ -39,8 +39,8 @@ std::string paddedRgb(const RgbImage& image, int width, int height) {
   return bytes;
 }
 
-// FFmpeg as a child: its standard input is `in`, its output and errors go to
-// `out`; `exec_report` (close-on-exec) carries errno if exec fails.
+// FFmpeg as a child: we write its standard input to `in` and read its output
+// and errors from `out`. A close-on-exec pipe carries errno back if exec fails.
 struct Child {
   pid_t pid = -1;
   int in = -1, out = -1;

@@ -34,7 +34,7 @@ json jobValue(const json& entry, const char* key) {
   return job.contains(key) ? job[key] : json(nullptr);
 }
 
-json summary(const fs::path& dir, const json& entry, const json& verdicts, const json& asset, const json& manifest) {
+json summary(const json& entry, const json& verdicts, const json& asset, const json& manifest) {
   const std::string name = entry.value("name", "");
   json s = {{"name", name}, {"status", entry.value("status", "")}};
   s["message"] = entry.contains("message") ? entry["message"] : json(nullptr);
@@ -72,7 +72,6 @@ json summary(const fs::path& dir, const json& entry, const json& verdicts, const
   } else {
     s["review"] = nullptr;
   }
-  (void)dir;
   return s;
 }
 
@@ -105,7 +104,7 @@ json assetSummaries(const fs::path& dir, const json& verdicts) {
     if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string()) continue;
     const std::string name = entry["name"];
     const bool finished = isFinished(entry);
-    out.push_back(summary(dir, entry, verdicts, finished ? readJsonOrNull(dir / name / "asset.json") : json(nullptr),
+    out.push_back(summary(entry, verdicts, finished ? readJsonOrNull(dir / name / "asset.json") : json(nullptr),
                           finished ? readJsonOrNull(dir / name / "manifest.json") : json(nullptr)));
   }
   return out;
@@ -118,7 +117,7 @@ std::optional<json> assetDetail(const fs::path& dir, const std::string& name, co
     const json asset = finished ? readJsonOrNull(dir / name / "asset.json") : json(nullptr);
     const json manifest = finished ? readJsonOrNull(dir / name / "manifest.json") : json(nullptr);
     const json stats = finished ? readJsonOrNull(dir / name / "stats.json") : json(nullptr);
-    json d = summary(dir, entry, verdicts, asset, manifest);
+    json d = summary(entry, verdicts, asset, manifest);
     d["asset"] = asset;
     d["lods"] = asset.is_object() ? asset.value("lods", json::array()) : json::array();
     d["stages"] = stats.is_object() ? stats.value("stages", json(nullptr)) : json(nullptr);
