@@ -33,6 +33,9 @@ try {
   const movie = await raw(url, 'GET', small.files.movie);
   check(movie.status === 200 && movie.headers['content-type'] === 'video/mp4' && movie.body.length > 1000,
     'the movie is served as video/mp4');
+  const part = await raw(url, 'GET', small.files.movie, undefined, { Range: 'bytes=0-99' });
+  check(part.status === 206 && part.body.length === 100 && part.headers['content-range'] === `bytes 0-99/${movie.body.length}`,
+    `a range of the movie is a 206 with its Content-Range (${part.status}, ${part.headers['content-range']})`);
   const glb = await raw(url, 'GET', small.files.lods[0].file);
   check(glb.status === 200 && glb.body.subarray(0, 4).toString() === 'glTF', 'the LOD0 GLB is served');
 
