@@ -102,7 +102,10 @@ function drawGrid() {
     caption.className = 'caption';
     const name = document.createElement('span');
     name.textContent = a.name;
-    caption.append(name, badge(a));
+    const status = document.createElement('span');
+    status.className = 'status';
+    status.textContent = a.status === 'ok' ? 'baked' : a.status;
+    caption.append(name, status, badge(a));
     tile.append(img, pick, caption);
     tile.addEventListener('click', () => openAsset(a.name));
     grid.append(tile);
