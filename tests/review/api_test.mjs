@@ -104,6 +104,14 @@ try {
   }
   await api(url, '/api/review', { asset: 'small-s1', status: 'needs-work', note: 'soften the ledge' });
 
+  // A review.json that is not one is refused with what to do, and left as it is.
+  const kept = fs.readFileSync(reviewFile);
+  fs.writeFileSync(reviewFile, 'not json');
+  r = await api(url, '/api/review', { asset: 'small-s1', status: 'approved' });
+  check(r.status === 409 && /is not a review file/.test(r.json.error) && fs.readFileSync(reviewFile, 'utf8') === 'not json',
+    'a damaged review.json: 409 with what to do, the file left as it is');
+  fs.writeFileSync(reviewFile, kept);
+
   // A restart: the verdict is still there.
   check(await stopReview(review) === 0, 'review stops cleanly on Ctrl-C');
   review = await startReview(rockbake, out);
