@@ -5,9 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "render/preview.h"
 #include "render/render_asset.h"
 #include "render/turntable_movie.h"
 #include "test_support.h"
@@ -85,6 +87,35 @@ TEST(TurntableMovie, IsH264HighYuv420pOneFramePerViewAtItsRate) {
   // Nothing but the movie is left beside it.
   for (const auto& e : std::filesystem::directory_iterator(dir.path()))
     EXPECT_NE(e.path().filename().string().front(), '.') << e.path();
+}
+
+// The movie has render.png's look: its first frame, decoded by FFmpeg back to
+// RGB, averages what the OCIO display transform gives for the EXR to within
+// three levels in each channel, with the same contrast within 5 % (a range
+// read as full or limited the wrong way scales it by 219/255, 14 %).
+TEST(TurntableMovie, LooksLikeTheDisplayTransform) {
+  test::TempDir dir;
+  RenderRequest request = turntable(dir.path(), 2, 24);
+  request.params.width = 160;
+  request.params.height = 120;
+  const RenderOutputs out = renderAsset(ball(), request);
+  const std::string rgb =
+      shellOutput("ffmpeg -v error -i '" + out.turntable_movie.string() + "' -frames:v 1 -f rawvideo -pix_fmt rgb24 -");
+  const RgbImage display = exrToDisplay(out.turntable_frames[0]);
+  ASSERT_EQ(rgb.size(), std::size_t(160 * 120 * 3));
+  ASSERT_EQ(display.pixels.size(), rgb.size());
+  for (int c = 0; c < 3; ++c) {
+    double movie = 0, expected = 0, movie2 = 0, expected2 = 0;
+    for (std::size_t i = std::size_t(c); i < rgb.size(); i += 3) {
+      const double m = double(static_cast<unsigned char>(rgb[i])), e = double(display.pixels[i]);
+      movie += m, expected += e, movie2 += m * m, expected2 += e * e;
+    }
+    const double n = double(rgb.size() / 3);
+    EXPECT_NEAR(movie / n, expected / n, 3.0) << "channel " << c;
+    const double movie_sd = std::sqrt(movie2 / n - (movie / n) * (movie / n));
+    const double expected_sd = std::sqrt(expected2 / n - (expected / n) * (expected / n));
+    EXPECT_NEAR(movie_sd / expected_sd, 1.0, 0.05) << "channel " << c;
+  }
 }
 
 TEST(TurntableMovie, SameFramesGiveTheSameBytes) {
