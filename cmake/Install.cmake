@@ -7,6 +7,7 @@
 #   <prefix>/share/rockbake/               build/share/rockbake/ (links to the source tree)
 #     render_templates/  (ocio/ inside)
 #     studio/            the page and the three.js files it serves
+#     review/            the review page (it imports the studio's three.js)
 #     slurm/             deploy/slurm's scripts
 #   <prefix>/share/doc/rockbake/           LICENSE, THIRD_PARTY_NOTICES, README.md
 #
@@ -17,7 +18,7 @@
 # uninstalled build reads the templates and the page as they are edited.
 set(ROCKBAKE_BUILD_DATA_DIR ${PROJECT_BINARY_DIR}/share/rockbake)
 file(MAKE_DIRECTORY ${ROCKBAKE_BUILD_DATA_DIR})
-foreach(folder render_templates studio)
+foreach(folder render_templates studio review)
   file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder} ${ROCKBAKE_BUILD_DATA_DIR}/${folder} SYMBOLIC)
 endforeach()
 
@@ -33,7 +34,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/studio/ DESTINATION share/rockbake/studi
 # Of the pinned three.js (studio/package-lock.json), the files the page imports, and only
 # those: the server maps /vendor/three/ to node_modules/three/ (docs/studio.md). The install
 # test follows every import the installed page makes, so a file missing here fails it.
-set(ROCKBAKE_STUDIO_THREE_FILES build/three.module.js examples/jsm/controls/OrbitControls.js)
+# The review page (review/) imports the same three.js, with its glTF loader.
+set(ROCKBAKE_STUDIO_THREE_FILES build/three.module.js examples/jsm/controls/OrbitControls.js
+    examples/jsm/loaders/GLTFLoader.js examples/jsm/utils/BufferGeometryUtils.js)
 set(three_root ${PROJECT_SOURCE_DIR}/studio/node_modules/three)
 install(CODE "
   if(NOT EXISTS \"${three_root}/package.json\")
@@ -44,6 +47,10 @@ foreach(file ${ROCKBAKE_STUDIO_THREE_FILES})
   get_filename_component(folder ${file} DIRECTORY)
   install(FILES ${three_root}/${file} DESTINATION share/rockbake/studio/node_modules/three/${folder})
 endforeach()
+
+# The review page: its HTML, module and styles.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/review/ DESTINATION share/rockbake/review
+        FILES_MATCHING PATTERN "*.html" PATTERN "*.js" PATTERN "*.css")
 
 set(slurm ${PROJECT_SOURCE_DIR}/deploy/slurm)
 install(PROGRAMS ${slurm}/submit.sh ${slurm}/rockbake-library.sbatch ${slurm}/rockbake-index.sbatch
@@ -69,8 +76,9 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # The shared libraries' packages come from dpkg-shlibdeps (dpkg-dev, and `file`); what the
 # executable runs or opens by name is added by hand: POV-Ray renders (render/povray.h),
-# DejaVu Sans labels contact sheets (render/font_text.h).
+# DejaVu Sans labels contact sheets (render/font_text.h), FFmpeg encodes turntable movies
+# (render/turntable_movie.h).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_DEPENDS "povray, fonts-dejavu-core")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "povray, fonts-dejavu-core, ffmpeg")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "slurm-client")
 include(CPack)

@@ -14,6 +14,8 @@ packages=(
   libembree-dev libeigen3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   povray openimageio-tools jq
+  # Turntable movies: FFmpeg with libx264, run as its own process (render/turntable_movie.h).
+  ffmpeg
   # Blender's glTF importer reads collision.glb in tests/collision (Blender 3.4; its importer
   # needs numpy).
   blender python3-numpy

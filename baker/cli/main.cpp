@@ -40,6 +40,7 @@
 #include "preset/preset_json.h"
 #include "preset/render_templates.h"
 #include "render/render_asset.h"
+#include "review/review_server.h"
 #include "studio/studio_server.h"
 
 namespace {
@@ -372,6 +373,32 @@ int runStudio(StudioArgs args) {
   return rockbake::runStudio(args.options);
 }
 
+// ---- review ----
+
+struct ReviewArgs {
+  std::string library_dir;
+  rockbake::ReviewOptions options;
+};
+
+CLI::App* declareReview(CLI::App& app, ReviewArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "review", "Review a baked library in a local web page: turntables, 3-D views, verdicts (docs/review.md)");
+  command->add_option("out", args.library_dir, "The library folder (holding index.json)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  command->add_option("--port", args.options.port, "TCP port (default: 8632; 0: any free port)")
+      ->check(CLI::Range(0, 65535));
+  command->add_option("--host", args.options.host, "Address to listen on (default: 127.0.0.1, this machine only)");
+  return command;
+}
+
+int runReview(ReviewArgs args) {
+  args.options.library_dir = args.library_dir;
+  args.options.web_root = rockbake::requireDataPath("review");
+  args.options.three_root = rockbake::requireDataPath("studio") / "node_modules" / "three";
+  return rockbake::runReview(args.options);
+}
+
 // ---- library ----
 
 struct LibraryArgs {
@@ -537,6 +564,7 @@ int main(int argc, char** argv) {
   LintArgs lint;
   PresetShowArgs preset_show;
   StudioArgs studio;
+  ReviewArgs review;
   LibraryArgs library;
   // Each subcommand, declared, and what runs when it is the one given.
   const std::vector<std::pair<CLI::App*, std::function<int()>>> subcommands = {
@@ -546,6 +574,7 @@ int main(int argc, char** argv) {
       {declareLint(app, lint), [&] { return runLint(lint); }},
       {declarePresetShow(app, preset_show), [&] { return runPresetShow(preset_show); }},
       {declareStudio(app, studio), [&] { return runStudio(studio); }},
+      {declareReview(app, review), [&] { return runReview(review); }},
       {declareLibrary(app, library), [&] { return runLibrary(library, verbose); }},
   };
 

@@ -159,7 +159,11 @@ void LocalServer::Impl::answer(const httplib::Request& req, httplib::Response& r
     response = errorResponse(refusal->status(), refusal->what());
   else
     response = route(request);
-  res.status = response.status;
+  // A 200 to a request with a Range header is left for cpp-httplib to number:
+  // it cuts the body to the range and answers 206 only when the status is
+  // still unset, and a 200 with part of a file reads as the whole file (a
+  // video seeking in the review page).
+  res.status = response.status == 200 && !req.ranges.empty() ? -1 : response.status;
   for (const auto& [name, value] : response.headers) res.set_header(name, value);
   res.set_content(std::move(response.body), response.content_type);
 }

@@ -19,6 +19,8 @@ const char* contentType(const fs::path& file) {
   if (ext == ".css") return "text/css; charset=utf-8";
   if (ext == ".json") return "application/json";
   if (ext == ".png") return "image/png";
+  if (ext == ".mp4") return "video/mp4";
+  if (ext == ".glb") return "model/gltf-binary";
   return "application/octet-stream";
 }
 

@@ -106,6 +106,7 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
       {"linear",
        {std::round(1e4 * linear[0]) / 1e4, std::round(1e4 * linear[1]) / 1e4, std::round(1e4 * linear[2]) / 1e4}}};
   j["preview"] = asset.preview.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.preview);
+  j["movie"] = asset.movie.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.movie);
   if (asset.collision) j["collision"] = collisionJson(*asset.collision, asset.units_per_meter);
   j["input_hash"] = asset.input_hash;
   return j;

@@ -9,7 +9,7 @@
 //    "texel_density" (pixels per metre), and
 //    "maps": [{"type", "lod", "file", "size": [w, h], "colour_space", "channels", "bits"}, ..],
 //    "average_color": {"srgb": "#rrggbb", "linear": [r, g, b]},  // area-weighted over LOD0
-//    "preview": "render.png" | null,
+//    "preview": "render.png" | null, "movie": "turntable.mp4" | null,
 //    "collision": {"file": "collision.glb", "naming": "unreal" | "godot", "hull_count", "vertex_count",
 //                  "hulls": [{"node", "vertices", "volume_m3"}, ..]},   // only when export lists collision
 //    "input_hash"}
@@ -71,6 +71,7 @@ struct AssetDescription {
   std::vector<AssetLod> lods;  // level 0 first
   std::vector<AssetMap> maps;  // empty: no texture set
   std::string preview;         // relative path, empty: none
+  std::string movie;           // the turntable movie, relative path, empty: none
   std::string input_hash;
   std::optional<AssetCollision> collision;  // none: export does not list collision
 };

@@ -293,6 +293,9 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
   bake.timings.render = rendered.seconds_total;
   spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
                (bake.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
+  if (!rendered.turntable_movie.empty())
+    spdlog::info("{}: {} frames, the turntable in {:.1f} s and its movie in {:.2f} s", bake.preset.name,
+                 rendered.turntable_frames.size(), rendered.seconds_turntable, rendered.seconds_movie);
   bake.clock.lap();
 }
 
@@ -335,6 +338,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
                                               : "RGBA",
                             f.bits});
   asset.preview = bake.options.render ? "render.png" : "";
+  asset.movie = bake.options.render && preset.render.turntable_frames > 0 ? "turntable.mp4" : "";
   const ManifestInputs& inputs = bake.options.manifest;
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
   asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);

@@ -91,9 +91,10 @@ IndexEntry finishedAsset(const fs::path& dir, const std::string& name, const jso
   const json& inputs = manifest["inputs"];
   const auto run = run_status.find(name);
   const std::string status = run != run_status.end() ? run->second : "ok";
-  bool rendered = false, described = false;
+  bool rendered = false, described = false, movie = false;
   for (const auto& output : manifest.value("outputs", json::array())) {
     rendered = rendered || (output.is_object() && output.value("path", "") == "render.png");
+    movie = movie || (output.is_object() && output.value("path", "") == "turntable.mp4");
     described = described || (output.is_object() && output.value("path", "") == kAssetFile);
   }
   IndexEntry entry;
@@ -104,6 +105,7 @@ IndexEntry finishedAsset(const fs::path& dir, const std::string& name, const jso
   entry.asset["input_hash"] = inputs.value("input_hash", "");
   entry.asset["manifest"] = name + "/" + kManifestFile;
   entry.asset["render"] = rendered ? json(name + "/render.png") : json(nullptr);
+  entry.asset["movie"] = movie ? json(name + "/turntable.mp4") : json(nullptr);
   entry.asset["asset"] = described ? json(name + "/" + kAssetFile) : json(nullptr);
   entry.library = inputs.value("library", json(nullptr));
   entry.tile = {name, rendered ? dir / "render.png" : fs::path(), "no render"};

@@ -9,7 +9,7 @@
 //      {"name", "status": "ok" | "skipped-resumed" | "failed",
 //       "job": {name, preset, wedge, wedge_set, set, seed, resolution},
 //       "input_hash", "manifest": "<name>/manifest.json", "render": "<name>/render.png" | null,
-//       "asset": "<name>/asset.json" | null}
+//       "movie": "<name>/turntable.mp4" | null, "asset": "<name>/asset.json" | null}
 //      {"name", "status": "failed", "message", "job", "failure": "<name>/failure.json"}
 //      {"name", "status": "damaged", "message"}],     // manifest.json / failure.json there but unreadable
 //    "counts": {"ok", "skipped-resumed", "failed", "damaged"},

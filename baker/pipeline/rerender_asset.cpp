@@ -55,6 +55,8 @@ RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
     request.params.quality = render.value("quality", request.params.quality);
     request.params.antialias = render.value("antialias", request.params.antialias);
     request.params.turntable_frames = render.at("turntable").value("frames", 0);
+    request.params.turntable_fps = render.at("turntable").value("fps", request.params.turntable_fps);
+    request.params.turntable_lookdev = render.at("turntable").value("lookdev", false);
     request.template_override = options.template_name;
     request.preset_name = preset.at("name").get<std::string>();
     request.seed = preset.at("seed").get<std::uint64_t>();

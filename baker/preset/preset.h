@@ -231,6 +231,8 @@ struct RenderParams {
   int quality = 9;           // POV-Ray +Q: 0..11
   double antialias = 0.3;    // POV-Ray +A threshold; 0 turns antialiasing off
   int turntable_frames = 0;  // 0: no turntable
+  int turntable_fps = 24;    // turntable.mp4's frame rate, 1 … 120
+  bool turntable_lookdev = false;  // an 18 % grey ball, a colour chart and a three-point rig in frame
 };
 
 // Collision hulls decomposed from the voxels (docs/collision.md): the preset's

@@ -556,6 +556,9 @@ const MapSpec<RenderParams>& turntableSpec() {
   static const Keys<RenderParams> k;
   static const MapSpec<RenderParams> spec{{
       k("frames", &RenderParams::turntable_frames, integer<int>(0, 360), "views around z (0: no turntable)"),
+      k("fps", &RenderParams::turntable_fps, integer<int>(1, 120), "`turntable.mp4`'s frame rate").unit("1/s"),
+      k("lookdev", &RenderParams::turntable_lookdev, boolean(),
+        "an 18 % grey ball, a colour chart and a three-point rig in frame"),
   }};
   return spec;
 }

@@ -50,6 +50,11 @@ std::vector<std::string> povrayArguments(const PovrayJob& job) {
                                    "+H" + std::to_string(job.height),
                                    "+Q" + std::to_string(job.quality),
                                    job.antialias > 0 ? "+A" + a.str() : std::string("-A"),
+                                   // Antialiasing jitter off: POV-Ray's jitter differs with the
+                                   // thread that renders a block, so a jittered image changes
+                                   // from run to run at any thread count above one
+                                   // (docs/rendering.md, "Running POV-Ray").
+                                   "-J",
                                    "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads)};
   return argv;
 }

@@ -41,7 +41,8 @@ class PovrayError : public std::runtime_error {
   explicit PovrayError(const std::string& what) : std::runtime_error(what) {}
 };
 
-// The argument vector runPovray passes (argv[0] = executable).
+// The argument vector runPovray passes (argv[0] = executable). Antialiasing
+// jitter is always off (-J), so the pixels are the same at any +WT.
 std::vector<std::string> povrayArguments(const PovrayJob& job);
 
 // POV-Ray's own transient failure on a loaded machine, retried by runPovray

@@ -17,8 +17,7 @@ std::filesystem::path defaultRenderTemplatesDir() {
   return renderTemplatesDir();
 }
 
-void exrToPng(const std::filesystem::path& exr, const std::filesystem::path& png_path,
-              const std::filesystem::path& cfg) {
+RgbImage exrToDisplay(const std::filesystem::path& exr, const std::filesystem::path& cfg) {
   int width = 0, height = 0;
   std::vector<float> rgb;
   try {
@@ -47,7 +46,12 @@ void exrToPng(const std::filesystem::path& exr, const std::filesystem::path& png
     const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
     image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
   }
-  writePngRgb(png_path, image);
+  return image;
+}
+
+void exrToPng(const std::filesystem::path& exr, const std::filesystem::path& png_path,
+              const std::filesystem::path& cfg) {
+  writePngRgb(png_path, exrToDisplay(exr, cfg));
 }
 
 }  // namespace rockbake

@@ -9,6 +9,7 @@
 #include "render/povray.h"
 #include "render/preview.h"
 #include "render/scene.h"
+#include "render/turntable_movie.h"
 
 #ifndef ROCKBAKE_VERSION
 #define ROCKBAKE_VERSION "unknown"
@@ -115,7 +116,7 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     // a grid of them.
     t = Clock::now();
     for (int i = 0; i < frames; ++i) {
-      SceneFrame f{i, frames, 360.0 * i / frames};
+      SceneFrame f{i, frames, 360.0 * i / frames, r.params.turntable_lookdev};
       const CameraSetup cam = frameCamera(meshes, w, h, f.turntable_deg);
       const std::filesystem::path scene_rel = std::filesystem::path("turntable") / (frameName(i) + ".pov");
       const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
@@ -133,6 +134,15 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     writeContactSheet(out.turntable_frames, out.turntable_sheet_exr, metadataFor(r, -1, home));
     exrToPng(out.turntable_sheet_exr, out.turntable_sheet_png, ocio);
     out.seconds_post += since(t);
+    t = Clock::now();
+    TurntableMovieJob movie;
+    movie.frames = out.turntable_frames;
+    movie.target = out.turntable_movie = r.asset_dir / "turntable.mp4";
+    movie.fps = r.params.turntable_fps;
+    movie.ocio_config = ocio;
+    movie.cancel = r.cancel;
+    writeTurntableMovie(movie);
+    out.seconds_movie = since(t);
   }
   out.seconds_total = since(t0);
   return out;

@@ -1,6 +1,6 @@
 // The render stage takes AssetMeshes and RenderParams and gives renders
 // (docs/rendering.md): scene → POV-Ray → EXR with metadata → OCIO PNG
-// preview; optionally a turntable and its contact sheet.
+// preview; optionally a turntable, its contact sheet and its movie.
 #pragma once
 
 #include <atomic>
@@ -41,14 +41,17 @@ struct RenderOutputs {
   std::vector<std::filesystem::path> turntable_frames;  // turntable/0000.exr, …
   std::filesystem::path turntable_sheet_exr;            // empty without a turntable
   std::filesystem::path turntable_sheet_png;
-  double seconds_scene = 0;      // writing the include and scenes
-  double seconds_still = 0;      // POV-Ray, the still
-  double seconds_turntable = 0;  // POV-Ray, all frames
-  double seconds_post = 0;       // metadata, contact sheet, PNG previews
+  std::filesystem::path turntable_movie;  // turntable.mp4; empty without a turntable
+  double seconds_scene = 0;               // writing the include and scenes
+  double seconds_still = 0;               // POV-Ray, the still
+  double seconds_turntable = 0;           // POV-Ray, all frames
+  double seconds_post = 0;                // metadata, contact sheet, PNG previews
+  double seconds_movie = 0;               // turntable.mp4 (FFmpeg)
   double seconds_total = 0;
 };
 
-// Throws PovrayError (POV-Ray missing / failed / timed out) or
+// Throws PovrayError (POV-Ray missing / failed / timed out), MovieError (FFmpeg
+// missing or failed, render/turntable_movie.h) or
 // std::runtime_error (template missing or with an unknown placeholder, I/O).
 RenderOutputs renderAsset(const AssetMeshes& meshes, const RenderRequest& request);
 

@@ -270,6 +270,7 @@ std::map<std::string, std::string> scenePlaceholders(const AssetFrame& meshes, c
       {"FRAME", std::to_string(frame.frame)},
       {"FRAMES", std::to_string(frame.frames)},
       {"TURNTABLE_ANGLE", num(frame.turntable_deg)},
+      {"LOOKDEV", frame.lookdev ? "1" : "0"},
   };
 }
 

@@ -90,6 +90,7 @@ struct SceneFrame {
   int frame = 0;   // 0-based
   int frames = 1;  // frames in the turntable (1 for a still)
   double turntable_deg = 0.0;
+  bool lookdev = false;  // {{LOOKDEV}}: the look-dev set in frame (render.turntable.lookdev)
 };
 
 // The values for every placeholder documented in render_templates/README.md;

@@ -7,7 +7,8 @@
 #   - holds neither the source nor the build folder's path (strings);
 #   - bakes and renders a small preset (a real POV-Ray render) and renders it again
 #     with another template, from a folder that is not the prefix;
-#   - serves the studio page and every module it imports (studio_page.mjs);
+#   - serves the studio page and every module it imports (studio_page.mjs), and the
+#     review page over a one-asset library the same way;
 #   - reads everything from ROCKBAKE_DATA_DIR when that is set, and says what is
 #     missing, writing nothing, when its data folder is not there.
 # Configures nothing: it installs what the build folder holds.
@@ -46,6 +47,7 @@ for f in bin/rockbake \
   share/rockbake/render_templates/debug.pov share/rockbake/render_templates/ocio/config.ocio \
   share/rockbake/studio/index.html share/rockbake/studio/studio.js share/rockbake/studio/studio.css \
   share/rockbake/studio/node_modules/three/build/three.module.js \
+  share/rockbake/review/index.html share/rockbake/review/review.js share/rockbake/review/review.css \
   share/rockbake/slurm/submit.sh share/rockbake/slurm/rockbake-library.sbatch \
   share/rockbake/slurm/rockbake-index.sbatch \
   share/doc/rockbake/LICENSE share/doc/rockbake/THIRD_PARTY_NOTICES share/doc/rockbake/README.md; do
@@ -56,7 +58,7 @@ vendored=$(cd "$prefix/share/rockbake/studio/node_modules" && find . -type f | s
 unexpected=$(grep -v -E '^\./three/(build|examples/jsm)/[^ ]+\.js$' <<<"$vendored" || true)
 [ -z "$unexpected" ] || fail_check "node_modules holds more than three.js modules: $unexpected"
 [ "$(wc -l <<<"$vendored")" -le 8 ] || fail_check "node_modules holds $(wc -l <<<"$vendored") files, not the few the page imports"
-pass "the layout: bin/, share/rockbake/{render_templates,studio,slurm}, share/doc/rockbake; node_modules: $(echo $vendored)"
+pass "the layout: bin/, share/rockbake/{render_templates,studio,review,slurm}, share/doc/rockbake; node_modules: $(echo $vendored)"
 # Every file served from another project is named in the notices that ship with it.
 while read -r f; do
   awk -v path="share/rockbake/studio/node_modules/${f#./}" '$1 == path { found = 1 } END { exit !found }' \
@@ -97,6 +99,16 @@ if node "$source_dir/tests/install/studio_page.mjs" "$rockbake" "$run/small.yaml
 else
   cat "$work/studio.log"
   fail_check "the moved rockbake's studio page"
+fi
+
+# ---------------------------------------------------------------- the review page
+printf -- '- {preset: small.yaml, seeds: [1]}\n' >lib.yaml
+if "$rockbake" library lib.yaml -o out-lib --threads 2 >"$work/library.log" 2>&1 &&
+  node "$source_dir/tests/install/studio_page.mjs" "$rockbake" --review "$run/out-lib" >"$work/review.log" 2>&1; then
+  pass "review serves its page and every module: $(tail -n 2 "$work/review.log" | head -n 1)"
+else
+  cat "$work/library.log" "$work/review.log"
+  fail_check "the moved rockbake's review page"
 fi
 
 # ---------------------------------------------------------------- ROCKBAKE_DATA_DIR

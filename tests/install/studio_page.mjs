@@ -1,11 +1,16 @@
 // The studio page as an installed rockbake serves it: the page, and every module it
 // loads, followed import by import (through the page's import map) over HTTP, so a
 // three.js file the install rules leave out (cmake/Install.cmake) is a failure here.
+// The review page (`--review OUT`, a baked library) is checked the same way.
 // Usage: node studio_page.mjs ROCKBAKE PRESET [MARKER]
+//        node studio_page.mjs ROCKBAKE --review OUT
 //   MARKER: text the page must contain (a page from ROCKBAKE_DATA_DIR's copy).
 import { check, raw, startStudio, stopStudio } from '../studio/harness.mjs';
+import { startReview, stopReview } from '../review/library.mjs';
 
-const [rockbake, preset, marker] = process.argv.slice(2);
+const [rockbake, preset, third] = process.argv.slice(2);
+const review = preset === '--review';
+const marker = review ? undefined : third;
 
 // Module specifiers of static imports and re-exports, and of dynamic imports of a literal.
 function importsOf(source) {
@@ -39,7 +44,7 @@ async function get(url) {
   return response;
 }
 
-const studio = await startStudio(rockbake, [preset, '--resolution', '16']);
+const studio = review ? await startReview(rockbake, third) : await startStudio(rockbake, [preset, '--resolution', '16']);
 try {
   const page = (await get(studio.url)).body.toString();
   if (marker) check(page.includes(marker), `the page is the one in ROCKBAKE_DATA_DIR (it holds '${marker}')`);
@@ -61,6 +66,6 @@ try {
   check(three.some((url) => url.endsWith('/build/three.module.js')), 'three.module.js is among the modules');
   console.log(`ok: ${fetched.size} modules fetched, ${three.length} of them three.js`);
 } finally {
-  const code = await stopStudio(studio);
-  check(code === 0, `the studio stops on Ctrl-C with exit status 0 (got ${code})`);
+  const code = review ? await stopReview(studio) : await stopStudio(studio);
+  check(code === 0, `the server stops on Ctrl-C with exit status 0 (got ${code})`);
 }

@@ -504,3 +504,33 @@ TEST(Preset, ItsJsonReadsBackAsTheSamePreset) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// render.turntable.fps and .lookdev (docs/preset-reference.md): read, defaulted,
+// range-checked at their line, and in the resolved preset only with a turntable
+// (so bakes without one keep their input hashes).
+TEST(Preset, TurntableMovieRateAndLookdev) {
+  const std::string head = std::string(test::kSmallPreset);
+  Preset p = parsePreset(head + "render: {turntable: {frames: 6, fps: 30, lookdev: true}}\n", "dir/p.yaml");
+  EXPECT_EQ(p.render.turntable_fps, 30);
+  EXPECT_TRUE(p.render.turntable_lookdev);
+  EXPECT_EQ(presetToJson(p)["render"]["turntable"]["fps"], 30);
+  EXPECT_EQ(presetToJson(p)["render"]["turntable"]["lookdev"], true);
+  p = parsePreset(head + "render: {turntable: {frames: 6}}\n", "dir/p.yaml");
+  EXPECT_EQ(p.render.turntable_fps, 24);
+  EXPECT_FALSE(p.render.turntable_lookdev);
+  p = parsePreset(head, "dir/p.yaml");
+  // The resolved preset names every key, defaults included, as the schema writes them.
+  EXPECT_EQ(presetToJson(p)["render"]["turntable"]["fps"], 24);
+  EXPECT_EQ(presetToJson(p)["render"]["turntable"]["lookdev"], false);
+  const std::string bad = errorOf(head + "render: {turntable: {frames: 6, fps: 0}}\n");
+  EXPECT_NE(bad.find("p.yaml:13"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("render.turntable.fps"), std::string::npos) << bad;
+  EXPECT_NE(errorOf(head + "render: {turntable: {lookdev: maybe}}\n").find("render.turntable.lookdev"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rockbake

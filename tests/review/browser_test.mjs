@@ -1,0 +1,143 @@
+// The review page in a real browser (Debian's chromium, headless, driven by
+// puppeteer-core pinned in studio/): the grid shows every asset, a filter
+// narrows it, the 3-D view draws the rock, the compare view draws both, a
+// verdict set on the page is in review.json.
+// Usage: node browser_test.mjs ROCKBAKE SOURCE_DIR [SCREENSHOT_DIR]
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+import { check, makeLibrary, startReview, stopReview } from './library.mjs';
+
+const [rockbake, sourceDir, screenshotDir] = process.argv.slice(2);
+const puppeteer = createRequire(path.resolve(sourceDir, 'studio', 'package.json'))('puppeteer-core');
+const dir = makeLibrary(rockbake);
+const out = path.join(dir, 'out');
+const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rockbake-chromium-'));
+const review = await startReview(rockbake, out);
+const url = review.url;
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+async function until(what, predicate, seconds = 30) {
+  const end = Date.now() + seconds * 1000;
+  for (;;) {
+    const value = await predicate();
+    if (value) return value;
+    if (Date.now() > end) throw new Error(`FAILED: timed out waiting for ${what}`);
+    await sleep(100);
+  }
+}
+
+// The share of pixels in the model's screen box that differ from the background.
+function coverage(page, which) {
+  return page.evaluate((which) => {
+    const views = window.reviewViewers();
+    const viewer = which === 'asset' ? views.asset : views.compare[which === 'left' ? 0 : 1];
+    const box = viewer.screenBox();
+    const c = document.createElement('canvas');
+    c.width = viewer.canvas.width; c.height = viewer.canvas.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(viewer.canvas, 0, 0);
+    const w = box.x1 - box.x0, h = box.y1 - box.y0;
+    if (w < 4 || h < 4) return 0;
+    const px = ctx.getImageData(box.x0, box.y0, w, h).data;
+    let differ = 0;
+    for (let i = 0; i < px.length; i += 4)
+      if (Math.abs(px[i] - 0x2e) + Math.abs(px[i + 1] - 0x2e) + Math.abs(px[i + 2] - 0x2e) > 12) ++differ;
+    return differ / (w * h);
+  }, which);
+}
+
+const browser = await puppeteer.launch({
+  executablePath: '/usr/bin/chromium',
+  headless: true,
+  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+         '--disable-background-networking', '--disable-component-update', '--no-first-run',
+         '--autoplay-policy=no-user-gesture-required', `--user-data-dir=${profile}`],
+});
+try {
+  const page = await browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('requestfailed', (r) => { if (!/turntable\.mp4/.test(r.url())) errors.push(`request failed: ${r.url()}`); });
+  page.on('request', (r) => { if (!r.url().startsWith(url) && !r.url().startsWith('data:')) errors.push(`outside request: ${r.url()}`); });
+  await page.setViewport({ width: 1400, height: 900 });
+  await page.goto(url, { waitUntil: 'load' });
+
+  // The grid: every asset, and the failed job with its message.
+  await until('the grid', () => page.evaluate(() => document.querySelectorAll('#grid .tile').length === 4));
+  const names = await page.evaluate(() => [...document.querySelectorAll('#grid .tile')].map((t) => t.dataset.name));
+  check(['small-s1', 'small-s2', 'tall-s1', 'tall-s2'].every((n) => names.includes(n)), `the grid shows every asset (${names})`);
+  check(await page.evaluate(() => /broken-s1 \(failed\): .*missing\.png/.test(document.querySelector('#failed .job')?.textContent)),
+    'the failed job is shown with its message');
+
+  // A filter narrows it; a sort orders it.
+  await page.select('#f-preset', 'tall.yaml');
+  const tall = await page.evaluate(() => [...document.querySelectorAll('#grid .tile')].map((t) => t.dataset.name));
+  check(tall.length === 2 && tall.every((n) => n.startsWith('tall')), `the preset filter narrows the grid to ${tall}`);
+  await page.select('#f-preset', '');
+  await page.select('#f-tag', 'tall');
+  check(await page.evaluate(() => document.querySelectorAll('#grid .tile').length) === 2, 'the tag filter narrows the grid');
+  await page.select('#f-tag', '');
+  await page.select('#sort', 'triangles');
+  const tris = await page.evaluate(() => [...document.querySelectorAll('#grid .tile')].map((t) =>
+    window.reviewState.assets.find((a) => a.name === t.dataset.name).triangles));
+  check(tris.every((t, i) => i === 0 || tris[i - 1] >= t), `sort by triangles orders the grid (${tris})`);
+
+  // The asset view: the movie, the 3-D view drawing the rock.
+  await page.click('#grid .tile[data-name="small-s1"] img');
+  await until('the asset view', () => page.evaluate(() => document.getElementById('a-canvas').dataset.drawn));
+  await sleep(300);
+  const drawn = await coverage(page, 'asset');
+  check(drawn > 0.2, `the 3-D view draws the rock: ${(100 * drawn).toFixed(0)} % of its screen box differs from the background`);
+  check(await page.evaluate(() => document.getElementById('a-movie').src.endsWith('/files/small-s1/turntable.mp4')),
+    'the asset view shows the turntable movie');
+  const video = await until('the movie decoding', () => page.evaluate(() => {
+    const v = document.getElementById('a-movie');
+    return v.readyState >= 2 && v.videoWidth > 0 ? { width: v.videoWidth, height: v.videoHeight } : null;
+  }), 20);
+  check(video.width === 96 && video.height === 72, `chromium decodes the movie (${video.width} x ${video.height})`);
+  for (const channel of ['normals', 'mask', 'base']) {
+    await page.select('#a-channel', channel);
+    await sleep(100);
+    check(await coverage(page, 'asset') > 0.2, `the ${channel} channel draws the rock`);
+  }
+  await page.click('#a-wire');
+  check(await coverage(page, 'asset') > 0.05, 'the wireframe draws the rock');
+  await page.click('#a-wire');
+
+  // A verdict and a note set on the page are in review.json.
+  await page.click('#a-verdict button[data-status="needs-work"]');
+  await until('the verdict saved', () => fs.existsSync(path.join(out, 'review.json')));
+  await page.type('#a-note', 'the base is too sharp');
+  const stored = await until('the note saved', () => {
+    const f = JSON.parse(fs.readFileSync(path.join(out, 'review.json'), 'utf8'));
+    return f.assets['small-s1']?.note === 'the base is too sharp' ? f.assets['small-s1'] : null;
+  });
+  check(stored.status === 'needs-work', 'a verdict and a note set on the page are in review.json');
+  if (screenshotDir) await page.screenshot({ path: path.join(screenshotDir, 'review-asset.png') });
+  await page.click('#a-close');
+  check(await page.evaluate(() => document.querySelector('#grid .tile[data-name="small-s1"] .badge').dataset.verdict === 'needs-work'),
+    'the grid shows the verdict');
+  if (screenshotDir) await page.screenshot({ path: path.join(screenshotDir, 'review-grid.png') });
+
+  // Compare: two assets, both drawn, cameras in step.
+  await page.click('#grid .tile[data-name="small-s1"] input');
+  await page.click('#grid .tile[data-name="tall-s1"] input');
+  await page.click('#compare');
+  await until('both compare views', () => page.evaluate(() => ['c-left', 'c-right'].every((id) => document.getElementById(id).dataset.drawn)));
+  await sleep(300);
+  const left = await coverage(page, 'left');
+  const right = await coverage(page, 'right');
+  check(left > 0.2 && right > 0.2, `the compare view draws both (${(100 * left).toFixed(0)} %, ${(100 * right).toFixed(0)} %)`);
+  check(await page.evaluate(() => {
+    const [a, b] = window.reviewViewers().compare;
+    return a.camera.position.distanceTo(b.camera.position) < 1e-9;
+  }), 'the compare views share one camera');
+  check(errors.length === 0, `no page errors and no request outside the server (${errors.join('; ')})`);
+} finally {
+  await browser.close();
+  await stopReview(review);
+  fs.rmSync(profile, { recursive: true, force: true });
+}
+fs.rmSync(dir, { recursive: true, force: true });
+console.log('review browser: all checks passed');
