@@ -120,6 +120,21 @@ try {
     'the grid shows the verdict');
   if (screenshotDir) await page.screenshot({ path: path.join(screenshotDir, 'review-grid.png') });
 
+  // A textured rock: tall has a texture set, and the view draws it with its glTF material's maps.
+  await page.click('#grid .tile[data-name="tall-s1"] img');
+  const maps = await until('the textured rock', () => page.evaluate(() => {
+    const model = window.reviewViewers().asset.model;
+    if (!model || !document.getElementById('a-name').textContent.includes('tall-s1')) return null;
+    let n = 0;
+    model.traverse((o) => { if (o.isMesh && o.material.map && o.material.map.image) ++n; });
+    return n || null;
+  }), 20);
+  await sleep(300);
+  const textured = await coverage(page, 'asset');
+  check(maps > 0 && textured > 0.2,
+    `the 3-D view draws a textured rock: ${maps} mesh(es) with a base colour map, ${(100 * textured).toFixed(0)} % of its screen box drawn`);
+  await page.click('#a-close');
+
   // Compare: two assets, both drawn, cameras in step.
   await page.click('#grid .tile[data-name="small-s1"] input');
   await page.click('#grid .tile[data-name="tall-s1"] input');
