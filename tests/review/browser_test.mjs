@@ -108,6 +108,8 @@ try {
   // A verdict and a note set on the page are in review.json.
   await page.click('#a-verdict button[data-status="needs-work"]');
   await until('the verdict saved', () => fs.existsSync(path.join(out, 'review.json')));
+  // The note opens once the page has the server's answer, which may come after the file is written.
+  await until('the note open for typing', () => page.evaluate(() => !document.getElementById('a-note').disabled));
   await page.type('#a-note', 'the base is too sharp');
   const stored = await until('the note saved', () => {
     const f = JSON.parse(fs.readFileSync(path.join(out, 'review.json'), 'utf8'));
