@@ -287,7 +287,7 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
   request.cancel = bake.options.cancel;
   if (textures) {
     const MaterialMaps maps = lodMaterialMaps(*textures, 0);
-    request.maps = {maps.base_color, maps.height, textures->texels_per_unit.at(0)};
+    request.maps = {maps.base_color};
   }
   const RenderOutputs rendered = renderAsset(textures ? textures->lods.at(0) : meshes->meshes, request);
   bake.timings.render = rendered.seconds_total;

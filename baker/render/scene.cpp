@@ -130,16 +130,11 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
   out << (mapped ? "\n  }\n#end\n}\n" : "\n  }\n}\n");
 }
 
-// The texture a template gets with Rockbake_Use_Maps: the base colour through the uvs, the height as a bump.
-// POV-Ray's image bump reads the height's change over a texel and tilts the normal by bump_size times it, so
-// bump_size is the texels per world unit: the height's slope in world units.
+// The texture a template gets with Rockbake_Use_Maps: the base colour through the uvs (no bump: RenderMaps).
 void writeMappedTexture(std::ostream& out, const RenderMaps& maps) {
   out << "#declare Rockbake_Has_Maps = 1;\n#ifndef (Rockbake_Use_Maps)\n#declare Rockbake_Use_Maps = 0;\n#end\n"
       << "#declare Rockbake_Mapped = texture {\n  uv_mapping\n  pigment { image_map { png \"" << maps.base_color
       << "\" gamma srgb interpolate 2 } }\n";
-  if (!maps.height.empty())
-    out << "  normal { bump_map { exr \"" << maps.height << "\" interpolate 2 bump_size " << num(maps.texels_per_unit)
-        << " } }\n";
   out << "  finish { Rockbake_Finish }\n}\n";
 }
 

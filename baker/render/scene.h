@@ -61,10 +61,11 @@ CameraSetup frameCamera(const AssetMeshes& meshes, int width, int height, double
 
 // The texture set's LOD0 maps as a render reads them (docs/textures.md), file names relative
 // to the asset folder, POV-Ray's working folder.
+// Only the base colour: POV-Ray 3.7 has no tangent-space normal maps, and its image bump tilts
+// normals along the pattern's own axes, not along each chart's frame in the atlas, so a bump
+// from the height map crumples the surface (docs/rendering.md).
 struct RenderMaps {
-  std::string base_color;      // 8-bit sRGB PNG
-  std::string height;          // 32-bit float EXR, world units along the normal (empty: no bump)
-  double texels_per_unit = 0;  // the atlas's texel density: POV-Ray reads the height's slope per texel
+  std::string base_color;  // 8-bit sRGB PNG
   bool empty() const { return base_color.empty(); }
 };
 
@@ -82,7 +83,7 @@ struct RenderMaps {
 // declares Rockbake_Has_Maps = 1 and, where a template sets Rockbake_Use_Maps to 1
 // before the #include, gives both surfaces instead the one texture
 // Rockbake_Mapped: the base colour through the uvs (`uv_mapping` image_map,
-// `gamma srgb`), the height as a bump, finish Rockbake_Finish. Without maps the
+// `gamma srgb`), finish Rockbake_Finish. Without maps the
 // include is as above, whatever the template sets.
 void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps = {});
 

@@ -152,16 +152,16 @@ TEST(TexturedExports, ObjFacesCarryTheirUvsAndTheMtlNamesTheMaps) {
   EXPECT_THROW(writeObj(other, dir.path() / "other.obj", &split, kMaps), std::runtime_error);
 }
 
-TEST(TexturedExports, RenderIncludeMapsTheBaseColourAndBumpsTheHeight) {
+TEST(TexturedExports, RenderIncludeMapsTheBaseColour) {
   test::TempDir dir;
   const AssetMeshes m = texturedSphere();
-  writeMeshInclude(m, dir.path() / "rock_mesh.inc", {"textures/s_BaseColor.png", "textures/s_Height.exr", 42.0});
+  writeMeshInclude(m, dir.path() / "rock_mesh.inc", {"textures/s_BaseColor.png"});
   const std::string inc = test::readBytes(dir.path() / "rock_mesh.inc");
   EXPECT_NE(inc.find("uv_vectors { " + std::to_string(m.rock.positions.size())), std::string::npos);
-  // The sRGB PNG decoded to linear light for the assumed_gamma 1.0 scene; the height's slope in world units.
+  // The sRGB PNG decoded to linear light for the assumed_gamma 1.0 scene; no image bump (RenderMaps).
   EXPECT_NE(inc.find("image_map { png \"textures/s_BaseColor.png\" gamma srgb"), std::string::npos)
       << inc.substr(0, 600);
-  EXPECT_NE(inc.find("bump_map { exr \"textures/s_Height.exr\" interpolate 2 bump_size 42"), std::string::npos);
+  EXPECT_EQ(inc.find("bump_map"), std::string::npos);
   // Templates choose: only with Rockbake_Use_Maps set do the maps replace the vertex colours.
   EXPECT_NE(inc.find("#ifndef (Rockbake_Use_Maps)\n#declare Rockbake_Use_Maps = 0;"), std::string::npos);
   EXPECT_NE(inc.find("#if (Rockbake_Use_Maps)"), std::string::npos);
