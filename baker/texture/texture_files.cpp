@@ -63,6 +63,11 @@ class BandRows {
 template <class T>
 void writePngBands(const std::filesystem::path& file, int size, int channels, bool srgb, int band_rows,
                    const TextureBands<T>& bands) {
+  if (band_rows >= size) {  // one band: the whole map, encoded in place
+    const TextureImage<T> image = bands(0, size);
+    if (image.channels != channels) throw std::runtime_error("cannot write PNG " + file.string() + ": wrong channels");
+    return writePng(file, image, srgb);
+  }
   try {
     BandRows<T> source(size, channels, band_rows, bands);
     const std::size_t width = std::size_t(size) * std::size_t(channels);
