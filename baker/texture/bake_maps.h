@@ -29,12 +29,14 @@
 
 namespace rockbake {
 
-// A square map, row-major, row 0 at v = 0, `channels` values a texel.
+// A square map, row-major, row 0 at v = 0, `channels` values a texel; or a band of its rows,
+// first_row onwards (pixels.size() / (size · channels) of them).
 template <class T>
 struct TextureImage {
   int size = 0;
   int channels = 0;
   std::vector<T> pixels;
+  int first_row = 0;
 };
 
 // What every map of one LOD reads. `lod` has uvs and normals (and tangents for the normal
@@ -45,6 +47,10 @@ struct LodBake {
   const TexelMap* texels = nullptr;
   const TexelHits* hits = nullptr;
   const AssetMeshes* source = nullptr;
+  // The rows to make, [first_row, last_row) (last_row −1: to the end): a map made in bands
+  // holds one band at a time; its values are the whole map's, byte for byte.
+  int first_row = 0;
+  int last_row = -1;
 };
 
 TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake);

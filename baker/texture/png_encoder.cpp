@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -35,22 +36,22 @@ void chunk(std::string& out, const char type[4], const std::string& data) {
 
 // One band of rows, filtered (Up: each byte minus the byte above it, PNG's filter type 2) and
 // deflated raw; `last` finishes the stream, else a sync flush ends it on a byte boundary.
-std::string deflateBand(const std::uint8_t* image, std::size_t stride, int bits, int row0, int row1, bool last,
-                        std::uint32_t& adler) {
-  std::vector<std::uint8_t> filtered(std::size_t(row1 - row0) * (stride + 1));
+// `rows`: the band's rows, `above`: the row before them (nullptr for the image's first).
+std::string deflateBand(const std::uint8_t* rows, const std::uint8_t* above_row, std::size_t stride, int bits,
+                        int count, bool last, std::uint32_t& adler) {
+  std::vector<std::uint8_t> filtered(std::size_t(count) * (stride + 1));
   std::vector<std::uint8_t> above(stride, 0), row(stride);
-  const auto load = [&](int y, std::vector<std::uint8_t>& into) {
-    const std::uint8_t* src = image + std::size_t(y) * stride;
+  const auto load = [&](const std::uint8_t* src, std::vector<std::uint8_t>& into) {
     if (bits == 16) {  // big-endian samples
       for (std::size_t i = 0; i < stride; i += 2) into[i] = src[i + 1], into[i + 1] = src[i];
     } else {
       std::memcpy(into.data(), src, stride);
     }
   };
-  if (row0 > 0) load(row0 - 1, above);
-  for (int y = row0; y < row1; ++y) {
-    load(y, row);
-    std::uint8_t* out = &filtered[std::size_t(y - row0) * (stride + 1)];
+  if (above_row) load(above_row, above);
+  for (int y = 0; y < count; ++y) {
+    load(rows + std::size_t(y) * stride, row);
+    std::uint8_t* out = &filtered[std::size_t(y) * (stride + 1)];
     out[0] = 2;  // Up
     for (std::size_t i = 0; i < stride; ++i) out[i + 1] = std::uint8_t(row[i] - above[i]);
     std::swap(row, above);
@@ -72,15 +73,14 @@ std::string deflateBand(const std::uint8_t* image, std::size_t stride, int bits,
   return out;
 }
 
-}  // namespace
-
-void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb) {
+// Encodes with `rowsAt(y0, y1)` giving rows y0 … y1 − 1 contiguous, called for consecutive
+// groups in order; what it returns need only stay valid until the next call.
+void encodePng(const std::filesystem::path& file, int size, int channels, int bits, bool srgb,
+               const std::function<const std::uint8_t*(int, int)>& rowsAt) {
   if (size <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
     throw std::runtime_error("encodePng: unsupported image");
   const std::size_t stride = std::size_t(size) * std::size_t(channels) * std::size_t(bits / 8);
   const int bands = (size + kBandRows - 1) / kBandRows;
-  const auto* image = static_cast<const std::uint8_t*>(pixels);
-
   std::string head("\x89PNG\r\n\x1a\n", 8);
   std::string header;
   put32(header, std::uint32_t(size));
@@ -99,17 +99,23 @@ void writePngFile(const std::filesystem::path& file, const void* pixels, int siz
   writeFileAtomically(file, [&](std::ostream& out) {
     out << head;
     // kGroup bands at a time, deflated in parallel and written as one IDAT chunk (the zlib
-    // stream runs on across chunks), so only their output is held at once.
+    // stream runs on across chunks), so only their rows and output are held at once.
     std::uint32_t checksum = 1;
+    std::vector<std::uint8_t> previous;  // the last row of the group before (the Up filter's row above)
     for (int first = 0; first < bands; first += kGroup) {
       const int last = std::min(bands, first + kGroup);
+      const int y0 = first * kBandRows, y1 = std::min(size, last * kBandRows);
+      const std::uint8_t* group = rowsAt(y0, y1);
       std::vector<std::string> deflated(static_cast<std::size_t>(last - first));
       std::vector<std::uint32_t> adler(deflated.size());
       tbb::parallel_for(first, last, [&](int b) {
+        const int row0 = b * kBandRows, row1 = std::min(size, (b + 1) * kBandRows);
+        const std::uint8_t* rows = group + std::size_t(row0 - y0) * stride;
+        const std::uint8_t* above = b == first ? (first == 0 ? nullptr : previous.data()) : rows - stride;
         deflated[std::size_t(b - first)] =
-            deflateBand(image, stride, bits, b * kBandRows, std::min(size, (b + 1) * kBandRows), b == bands - 1,
-                        adler[std::size_t(b - first)]);
+            deflateBand(rows, above, stride, bits, row1 - row0, b == bands - 1, adler[std::size_t(b - first)]);
       });
+      previous.assign(group + std::size_t(y1 - 1 - y0) * stride, group + std::size_t(y1 - y0) * stride);
       std::string data = first == 0 ? std::string("\x78\x01", 2) : std::string();  // zlib: deflate, fastest
       for (int b = first; b < last; ++b) {
         data += deflated[std::size_t(b - first)];
@@ -125,6 +131,24 @@ void writePngFile(const std::filesystem::path& file, const void* pixels, int siz
     std::string tail;
     chunk(tail, "IEND", std::string());
     out << tail;
+  });
+}
+
+}  // namespace
+
+void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb) {
+  const auto* image = static_cast<const std::uint8_t*>(pixels);
+  const std::size_t stride = std::size_t(std::max(size, 0)) * std::size_t(channels) * std::size_t(bits / 8);
+  encodePng(file, size, channels, bits, srgb, [&](int y0, int) { return image + std::size_t(y0) * stride; });
+}
+
+void writePngFile(const std::filesystem::path& file, int size, int channels, int bits, bool srgb, const PngRows& rows) {
+  const std::size_t stride = std::size_t(std::max(size, 0)) * std::size_t(channels) * std::size_t(bits / 8);
+  std::vector<std::uint8_t> group;
+  encodePng(file, size, channels, bits, srgb, [&](int y0, int y1) {
+    group.resize(std::size_t(y1 - y0) * stride);
+    rows(y0, y1, group.data());
+    return static_cast<const std::uint8_t*>(group.data());
   });
 }
 

@@ -10,12 +10,21 @@
 // (the bands are fixed, not the thread count). Any PNG reader reads the result.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 
 namespace rockbake::texture_detail {
 
 // `pixels`: size × size texels of `channels` (1..4) samples, row-major, 8 or 16 `bits` each
 // (16-bit samples in the host's order). Throws std::runtime_error if zlib or the write fails.
 void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb);
+
+// Fills rows y0 … y1 − 1 of the image (y1 − y0 rows of size · channels samples) into `into`.
+using PngRows = std::function<void(int y0, int y1, std::uint8_t* into)>;
+
+// The same file from rows pulled in order, kGroup · kBandRows (512) at a time: a map made in
+// bands is encoded without ever being whole in memory. Exceptions from `rows` propagate.
+void writePngFile(const std::filesystem::path& file, int size, int channels, int bits, bool srgb, const PngRows& rows);
 
 }  // namespace rockbake::texture_detail

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <ostream>
 #include <stdexcept>
 
@@ -27,6 +28,54 @@ void writePng(const std::filesystem::path& file, const TextureImage<T>& image, b
     throw std::runtime_error("cannot write PNG " + file.string() + ": the image has no pixels or the wrong size");
   try {
     texture_detail::writePngFile(file, image.pixels.data(), image.size, image.channels, int(8 * sizeof(T)), srgb);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write PNG " + file.string() + ": " + e.what());
+  }
+}
+
+// Serves a map's rows in order from bands of `band_rows` rows made on demand, one band held.
+template <class T>
+class BandRows {
+ public:
+  BandRows(int size, int channels, int band_rows, const TextureBands<T>& make)
+      : size_(size), channels_(channels), band_rows_(std::max(1, band_rows)), make_(make) {}
+
+  const T* row(int y) {
+    const std::size_t width = std::size_t(size_) * std::size_t(channels_);
+    if (band_.pixels.empty() || y < band_.first_row ||
+        std::size_t(y - band_.first_row) * width >= band_.pixels.size()) {
+      const int first = y / band_rows_ * band_rows_;
+      const int last = std::min(size_, first + band_rows_);
+      band_ = make_(first, last);
+      if (band_.first_row != first || band_.pixels.size() != std::size_t(last - first) * width)
+        throw std::runtime_error("the band of rows " + std::to_string(first) + "–" + std::to_string(last) +
+                                 " has the wrong size");
+    }
+    return &band_.pixels[std::size_t(y - band_.first_row) * width];
+  }
+
+ private:
+  int size_, channels_, band_rows_;
+  const TextureBands<T>& make_;
+  TextureImage<T> band_;
+};
+
+template <class T>
+void writePngBands(const std::filesystem::path& file, int size, int channels, bool srgb, int band_rows,
+                   const TextureBands<T>& bands) {
+  if (band_rows >= size) {  // one band: the whole map, encoded in place
+    const TextureImage<T> image = bands(0, size);
+    if (image.channels != channels) throw std::runtime_error("cannot write PNG " + file.string() + ": wrong channels");
+    return writePng(file, image, srgb);
+  }
+  try {
+    BandRows<T> source(size, channels, band_rows, bands);
+    const std::size_t width = std::size_t(size) * std::size_t(channels);
+    texture_detail::writePngFile(
+        file, size, channels, int(8 * sizeof(T)), srgb, [&](int y0, int y1, std::uint8_t* into) {
+          for (int y = y0; y < y1; ++y)
+            std::memcpy(into + std::size_t(y - y0) * width * sizeof(T), source.row(y), width * sizeof(T));
+        });
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write PNG " + file.string() + ": " + e.what());
   }
@@ -62,10 +111,27 @@ void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::
   writePng(file, image, false);
 }
 
+void writeTexturePng(const std::filesystem::path& file, int size, int channels, bool srgb, int band_rows,
+                     const TextureBands<std::uint8_t>& bands) {
+  if (channels != 3 && channels != 4)
+    throw std::runtime_error("cannot write PNG " + file.string() + ": 3 or 4 channels expected");
+  writePngBands(file, size, channels, srgb, band_rows, bands);
+}
+
+void writeTexturePng(const std::filesystem::path& file, int size, int band_rows,
+                     const TextureBands<std::uint16_t>& bands) {
+  writePngBands(file, size, 3, false, band_rows, bands);
+}
+
 void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image) {
   if (image.channels != 1 || image.size <= 0 ||
       image.pixels.size() != std::size_t(image.size) * std::size_t(image.size))
     throw std::runtime_error("cannot write EXR " + file.string() + ": one channel of size² pixels expected");
+  writeTextureExr(file, image.size, image.size, [&](int, int) { return image; });
+}
+
+void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands) {
+  if (size <= 0) throw std::runtime_error("cannot write EXR " + file.string() + ": no pixels");
   // OpenEXR writes straight into the atomic file's stream (it seeks back to patch its offset table).
   class Stream : public Imf::OStream {
    public:
@@ -77,18 +143,30 @@ void writeTextureExr(const std::filesystem::path& file, const TextureImage<float
    private:
     std::ostream& out_;
   };
+  const int rows = std::max(1, band_rows);
   try {
     writeFileAtomically(file, [&](std::ostream& out) {
-      Imf::Header header(image.size, image.size);
+      Imf::Header header(size, size);
       header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
       header.compression() = Imf::ZIP_COMPRESSION;
       Stream stream(out, file.string());
       Imf::OutputFile exr(stream, header, std::max(1, tbb::this_task_arena::max_concurrency()));
-      Imf::FrameBuffer frame;
-      frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.pixels.data())),
-                                   sizeof(float), sizeof(float) * std::size_t(image.size)));
-      exr.setFrameBuffer(frame);
-      exr.writePixels(image.size);
+      // Each band's slice is addressed as OpenEXR does a region's: its base pointer is where
+      // row 0 would be, and OpenEXR reads only the rows written (y from first onwards).
+      for (int first = 0; first < size; first += rows) {
+        const int last = std::min(size, first + rows);
+        const TextureImage<float> band = bands(first, last);
+        if (band.first_row != first || band.pixels.size() != std::size_t(last - first) * std::size_t(size))
+          throw std::runtime_error("the band of rows " + std::to_string(first) + "–" + std::to_string(last) +
+                                   " has the wrong size");
+        const std::size_t row_bytes = sizeof(float) * std::size_t(size);
+        char* base = reinterpret_cast<char*>(const_cast<float*>(band.pixels.data())) -
+                     std::ptrdiff_t(std::size_t(first) * row_bytes);
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice(Imf::FLOAT, base, sizeof(float), row_bytes));
+        exr.setFrameBuffer(frame);
+        exr.writePixels(last - first);
+      }
     });
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write EXR " + file.string() + ": " + e.what());

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "texture/bake_maps.h"
@@ -29,5 +30,17 @@ void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::
 void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::uint16_t>& image);
 // 32-bit float, 1 channel.
 void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image);
+
+// A map made band by band: bands(first_row, last_row) returns the image of those rows
+// (TextureImage::first_row = first_row). The writers below ask for the bands of
+// `band_rows` rows in order (the last one shorter where band_rows does not divide the size),
+// hold one at a time, and write the same bytes as the whole map's writers above.
+template <class T>
+using TextureBands = std::function<TextureImage<T>(int first_row, int last_row)>;
+void writeTexturePng(const std::filesystem::path& file, int size, int channels, bool srgb, int band_rows,
+                     const TextureBands<std::uint8_t>& bands);
+void writeTexturePng(const std::filesystem::path& file, int size, int band_rows,
+                     const TextureBands<std::uint16_t>& bands);
+void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands);
 
 }  // namespace rockbake

@@ -1,6 +1,9 @@
 #include "texture/texture_set.h"
 
 #include <ctime>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <stdexcept>
 
 #include "core/stopwatch.h"
@@ -15,6 +18,18 @@
 #include "texture/uv_atlas.h"
 
 namespace rockbake {
+namespace {
+
+// Hands the heap's free pages back to the system. What the atlas's solvers free on a hero's
+// LOD0 the allocator would otherwise keep, while the texel map and the hits that follow are
+// large blocks mapped afresh: without this the two add up (75 MiB of the set's peak there).
+void releaseFreedHeap() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
+}  // namespace
 
 TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
                           const TextureSetRequest& request) {
@@ -38,6 +53,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     const std::string lod = "lod" + std::to_string(k);
     const int size = lodMapSize(params, int(k));
     UvAtlas atlas = buildUvAtlas(lods[k], size, params.padding);
+    releaseFreedHeap();
     step(lod + " atlas");
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
@@ -59,34 +75,59 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       set.files.push_back({textureFileName(request.name, map, suffix), map, int(k), size, channels, bits, space});
       return request.folder / set.files.back().file;
     };
-    // Each map is made, then written and freed, before the next: one map in memory at a time.
-    const auto timed = [&](TextureMap map, auto&& image, auto&& write) {
-      step(lod + " " + mapName(map));
-      write(image);
+    // Each map is made, then written and freed, before the next: one map in memory at a time,
+    // or one band of it.
+    const bool banded = request.whole_map_size <= 0 || size > request.whole_map_size;
+    const int rows = banded ? (request.band_rows > 0 ? request.band_rows : kBandRows) : size;
+    const auto bands = [&](auto&& make) {
+      return [&bake, make](int first, int last) {
+        LodBake band = bake;
+        band.first_row = first, band.last_row = last;
+        return make(band);
+      };
+    };
+    const auto write = [&](TextureMap map, auto&& make, auto&& file) {
+      step(lod + " " + mapName(map));  // the time until here: the map's own is in its file's step
+      file(bands(make));
       step(lod + " " + mapName(map) + " file");
     };
     for (TextureMap map : params.maps) {
       switch (map) {
         case TextureMap::Normal:
-          timed(map, bakeNormalMap(bake),
-                [&](const auto& image) { writeTexturePng(record(map, 3, 16, "linear"), image); });
+          write(
+              map, [](const LodBake& b) { return bakeNormalMap(b); },
+              [&](const TextureBands<std::uint16_t>& made) {
+                writeTexturePng(record(map, 3, 16, "linear"), size, rows, made);
+              });
           break;
         case TextureMap::BaseColor:
-          timed(map, bakeBaseColor(bake, look),
-                [&](const auto& image) { writeTexturePng(record(map, 3, 8, "srgb"), image, true); });
+          write(
+              map, [&look](const LodBake& b) { return bakeBaseColor(b, look); },
+              [&](const TextureBands<std::uint8_t>& made) {
+                writeTexturePng(record(map, 3, 8, "srgb"), size, 3, true, rows, made);
+              });
           break;
         case TextureMap::Orm:
-          timed(map, bakeOrm(bake, occlusion, look),
-                [&](const auto& image) { writeTexturePng(record(map, 3, 8, "linear"), image, false); });
+          write(
+              map, [&look, &occlusion](const LodBake& b) { return bakeOrm(b, occlusion, look); },
+              [&](const TextureBands<std::uint8_t>& made) {
+                writeTexturePng(record(map, 3, 8, "linear"), size, 3, false, rows, made);
+              });
           break;
         case TextureMap::Mask:
-          timed(map, bakeMask(bake, look),
-                [&](const auto& image) { writeTexturePng(record(map, 4, 8, "linear"), image, false); });
+          write(
+              map, [&look](const LodBake& b) { return bakeMask(b, look); },
+              [&](const TextureBands<std::uint8_t>& made) {
+                writeTexturePng(record(map, 4, 8, "linear"), size, 4, false, rows, made);
+              });
           break;
         case TextureMap::Height:
           if (k == 0)
-            timed(map, bakeHeight(bake),
-                  [&](const auto& image) { writeTextureExr(record(map, 1, 32, "linear"), image); });
+            write(
+                map, [](const LodBake& b) { return bakeHeight(b); },
+                [&](const TextureBands<float>& made) {
+                  writeTextureExr(record(map, 1, 32, "linear"), size, rows, made);
+                });
           break;
       }
     }

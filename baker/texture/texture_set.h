@@ -8,7 +8,9 @@
 // the LOD chain's triangle budgets: a layout shared with LOD0 would have the simplifier keep
 // LOD0's seams (docs/textures.md, "The LOD chain"). Occlusion is cast per LOD vertex
 // (ambient_occlusion.h). Only `params.maps` are made. Deterministic: the files are
-// byte-identical at any thread count.
+// byte-identical at any thread count. A large map (a hero's 4096² LOD0) is made and written
+// in bands of rows, never whole: the set's memory is the ray scene, the LOD's texel map and
+// hits, and one band (docs/textures.md, "Memory").
 #pragma once
 
 #include <cstdint>
@@ -28,7 +30,13 @@ struct TextureSetRequest {
   bool varied = true;            // the rock's look (rock_look.h) on the palette; false: its colours exactly
   std::string name;              // the asset's: file names <name>_BaseColor.png, …
   std::filesystem::path folder;  // where the files go (created if missing)
+  // Maps larger than kWholeMapSize are made and written in bands of this many rows, one band
+  // in memory at a time (0: kBandRows); smaller ones whole. The files are the same either way.
+  int band_rows = 0;
+  int whole_map_size = 2048;  // the largest map made whole (≤ 0: every map in bands)
 };
+
+inline constexpr int kBandRows = 512;
 
 struct TextureFile {
   std::string file;  // relative to the folder

@@ -32,9 +32,13 @@ TexelHits traceTexels(const AssetMeshes& lod, const TexelMap& texels, const RayS
   const int size = texels.size;
   TexelHits out;
   out.row_start.assign(std::size_t(size) + 1, 0);
+  const std::size_t blocks = (std::size_t(size) + kHitBlock - 1) / kHitBlock;
+  out.block_start.assign(std::size_t(size) * blocks, 0);
   for (int y = 0; y < size; ++y) {
     std::size_t covered = 0;
     for (int x = 0; x < size; ++x) {
+      if (x % kHitBlock == 0)
+        out.block_start[std::size_t(y) * blocks + std::size_t(x / kHitBlock)] = std::uint32_t(covered);
       const std::uint32_t t = texels.texels[std::size_t(y) * std::size_t(size) + std::size_t(x)];
       covered += t != kEmptyTexel && !(t & kDilatedTexel);
     }

@@ -29,8 +29,26 @@ struct TexelHit {
 struct TexelHits {
   std::vector<TexelHit> hits;          // one per covered texel, row-major
   std::vector<std::size_t> row_start;  // index in `hits` of each row's first covered texel; size + 1 entries
-  std::size_t missed = 0;              // covered texels whose rays found nothing within the cage
+  // Per row, per block of kHitBlock texels: the row's covered texels before the block
+  // (hitIndex finds any texel's hit without a scan of its row).
+  std::vector<std::uint32_t> block_start;
+  std::size_t missed = 0;  // covered texels whose rays found nothing within the cage
 };
+
+inline constexpr int kHitBlock = 64;
+
+// The index in hits.hits of covered texel (x, y) of `texels`.
+inline std::size_t hitIndex(const TexelMap& texels, const TexelHits& hits, int x, int y) {
+  const std::size_t size = std::size_t(texels.size), blocks = (size + kHitBlock - 1) / kHitBlock;
+  const int x0 = x / kHitBlock * kHitBlock;
+  std::size_t k =
+      hits.row_start[std::size_t(y)] + hits.block_start[std::size_t(y) * blocks + std::size_t(x / kHitBlock)];
+  for (int i = x0; i < x; ++i) {
+    const std::uint32_t t = texels.texels[std::size_t(y) * size + std::size_t(i)];
+    k += t != kEmptyTexel && !(t & kDilatedTexel);
+  }
+  return k;
+}
 
 // Barycentric weights of texel (x, y)'s centre in `triangle` of `mesh` (by its uvs), clamped
 // onto the triangle (a centre on its edge, snapped, may sit a hair outside).

@@ -426,6 +426,55 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   for (float h : height) ASSERT_LT(std::abs(h), 1e-3f);
 }
 
+// A map made in bands of rows (the hero's memory bound, docs/textures.md "Memory") is the
+// whole map byte for byte, whatever the band height: one that divides neither the map, nor
+// the PNG encoder's 512-row groups, nor the EXR's 16-line blocks; a single row; one as high
+// as the map. LOD1 is simplified, so its empty texels copy texels in other bands.
+TEST(TextureSet, BandedMapsEqualWholeMapsAtAnyBandHeight) {
+  const AssetMeshes& source = test::weatheredRock().meshes;
+  std::vector<AssetMeshes> lods{source};
+  lods.push_back(simplifyLods(source, {{0.2}}).front());
+  TextureSetRequest request;
+  request.params.size = 512;
+  request.params.ao_rays = 8;
+  request.seed = 5;
+  request.voxel_size = 2.0 / 32;
+  request.name = "banded";
+  test::TempDir whole;
+  request.folder = whole.path();
+  const TextureSet reference = bakeTextureSet(lods, source, request);
+  ASSERT_EQ(reference.files.size(), 9u);
+  for (int rows : {37, 1, 100, 512}) {
+    test::TempDir banded;
+    request.folder = banded.path();
+    request.whole_map_size = 0;  // every map in bands
+    request.band_rows = rows;
+    const TextureSet set = bakeTextureSet(lods, source, request);
+    ASSERT_EQ(set.files.size(), reference.files.size());
+    for (const TextureFile& f : reference.files)
+      EXPECT_EQ(test::readBytes(banded.path() / f.file), test::readBytes(whole.path() / f.file))
+          << f.file << " in bands of " << rows << " rows";
+  }
+}
+
+// Any texel's hit is found without a scan of its row, in every block of the row.
+TEST(TraceTexels, HitIndexCountsTheCoveredTexelsBeforeTheTexel) {
+  const AssetMeshes& source = test::weatheredRock().meshes;
+  UvAtlas atlas = buildUvAtlas(source, 300, 4);
+  TexelMap texels = rasterizeUv(atlas.meshes, 300);
+  dilateTexels(texels);
+  RaySource rays(source);
+  const TexelHits hits = traceTexels(atlas.meshes, texels, rays, 0.1 * rays.radius());
+  std::size_t k = 0;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 300; ++x) {
+      const std::uint32_t t = texels.texels[std::size_t(y) * 300 + std::size_t(x)];
+      if (t == kEmptyTexel || (t & kDilatedTexel)) continue;
+      ASSERT_EQ(hitIndex(texels, hits, x, y), k++) << x << ", " << y;
+    }
+  EXPECT_EQ(k, hits.hits.size());
+}
+
 TEST(TextureSet, HalvedSizesNameEveryLodsMapsAndRefuseBadParams) {
   const AssetMeshes sphere = test::assetOf(test::sphereSurface(3));
   test::TempDir dir;
