@@ -135,9 +135,11 @@ void dumpAtlas(const UvAtlas& atlas, const TexelMap& texels, const std::filesyst
   writePngRgb(file, image);
 }
 
-// A 16-bit RGB PNG as written, read with libpng's own API (no gamma handling): the bench
-// decodes normal maps without the baker's code.
-std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& size) {
+// An RGB PNG as written (T: std::uint16_t for 16 bits, std::uint8_t for 8), read with libpng's
+// own API (no gamma handling): the bench decodes normal and base colour maps without the
+// baker's code.
+template <class T>
+std::vector<T> readPngRgb(const std::filesystem::path& file, int& size) {
   std::FILE* f = std::fopen(file.c_str(), "rb");
   if (!f) throw std::runtime_error("cannot open " + file.string());
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
@@ -148,35 +150,12 @@ std::vector<std::uint16_t> readPng16(const std::filesystem::path& file, int& siz
     throw std::runtime_error("cannot read " + file.string());
   }
   png_init_io(png, f);
-  png_read_png(png, info, PNG_TRANSFORM_SWAP_ENDIAN, nullptr);
+  png_read_png(png, info, sizeof(T) == 2 ? PNG_TRANSFORM_SWAP_ENDIAN : PNG_TRANSFORM_IDENTITY, nullptr);
   size = int(png_get_image_width(png, info));
   png_bytepp rows = png_get_rows(png, info);
-  std::vector<std::uint16_t> pixels(std::size_t(size) * std::size_t(size) * 3);
+  std::vector<T> pixels(std::size_t(size) * std::size_t(size) * 3);
   for (int y = 0; y < size; ++y)
-    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 6);
-  png_destroy_read_struct(&png, &info, nullptr);
-  std::fclose(f);
-  return pixels;
-}
-
-// An 8-bit RGB PNG as written, with libpng's own API: the base colour map.
-std::vector<std::uint8_t> readPng8(const std::filesystem::path& file, int& size) {
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) throw std::runtime_error("cannot open " + file.string());
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(f);
-    throw std::runtime_error("cannot read " + file.string());
-  }
-  png_init_io(png, f);
-  png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-  size = int(png_get_image_width(png, info));
-  png_bytepp rows = png_get_rows(png, info);
-  std::vector<std::uint8_t> pixels(std::size_t(size) * std::size_t(size) * 3);
-  for (int y = 0; y < size; ++y)
-    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 3);
+    std::memcpy(&pixels[std::size_t(y) * std::size_t(size) * 3], rows[y], std::size_t(size) * 3 * sizeof(T));
   png_destroy_read_struct(&png, &info, nullptr);
   std::fclose(f);
   return pixels;
@@ -437,17 +416,19 @@ int main(int argc, char** argv) {
     const std::filesystem::path last = out / rule / ("threads" + std::to_string(thread_counts.back()));
     const RaySource lod0_rays(set.lods[0]);
     int lod0_size = 0;
-    const auto lod0_map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, 0), lod0_size);
+    const auto lod0_map =
+        readPngRgb<std::uint16_t>(last / textureFileName(preset.name, TextureMap::Normal, 0), lod0_size);
     for (std::size_t k = 0; k < set.lods.size(); ++k) {
       const TexelMap texels = rasterizeUv(set.lods[k], set.sizes[k]);
       UvAtlas atlas;
       atlas.meshes = set.lods[k];
       const UvFigures f = uvFigures(atlas, texels);
       int map_size = 0;
-      const auto map = readPng16(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
+      const auto map =
+          readPngRgb<std::uint16_t>(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
       int colour_size = 0;
-      const auto colour =
-          readPng8(last / textureFileName(preset.name, TextureMap::BaseColor, k == 0 ? -1 : int(k)), colour_size);
+      const auto colour = readPngRgb<std::uint8_t>(
+          last / textureFileName(preset.name, TextureMap::BaseColor, k == 0 ? -1 : int(k)), colour_size);
       const double colour_error =
           baseColourError(set.lods[k], colour, colour_size, set.lods[0], lod0_rays, 0.1 * lod0_rays.radius());
       const Fidelity fid = fidelity_figures ? fidelity(set.lods[k], map, map_size, set.lods[0], lod0_map, lod0_size,

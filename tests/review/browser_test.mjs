@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { createRequire } from 'node:module';
-import { check, makeLibrary, startReview, stopReview } from './library.mjs';
+import { check, makeLibrary, sleep, startReview, stopReview, until as waitFor } from './library.mjs';
 
 const [rockbake, sourceDir, screenshotDir] = process.argv.slice(2);
 const puppeteer = createRequire(path.resolve(sourceDir, 'studio', 'package.json'))('puppeteer-core');
@@ -16,16 +16,7 @@ const out = path.join(dir, 'out');
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rockbake-chromium-'));
 const review = await startReview(rockbake, out);
 const url = review.url;
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, predicate, seconds = 30) {
-  const end = Date.now() + seconds * 1000;
-  for (;;) {
-    const value = await predicate();
-    if (value) return value;
-    if (Date.now() > end) throw new Error(`FAILED: timed out waiting for ${what}`);
-    await sleep(100);
-  }
-}
+const until = (what, predicate, seconds = 30) => waitFor(what, predicate, seconds);
 
 // The share of pixels in the model's screen box that differ from the background.
 function coverage(page, which) {

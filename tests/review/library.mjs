@@ -6,7 +6,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 
-export { api, check, raw } from '../studio/harness.mjs';
+export { api, check, raw, sleep, until } from '../studio/harness.mjs';
 
 const SMALL = `rockbake: 1
 name: small

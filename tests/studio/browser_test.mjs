@@ -7,7 +7,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { createRequire } from 'node:module';
-import { api, bakeVdb, check, presetFolder, startStudio, stopStudio } from './harness.mjs';
+import { api, bakeVdb, check, presetFolder, sleep, startStudio, stopStudio, until as waitFor } from './harness.mjs';
 
 const [rockbake, sourceDir, screenshotArg, resolutionArg] = process.argv.slice(2);
 // puppeteer-core is pinned by studio/package-lock.json and installed there by scripts/setup.sh.
@@ -21,16 +21,7 @@ const url = studio.url;
 let passed = 0;
 let failure = null;
 const ok = (condition, message) => { check(condition, message); ++passed; };
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, predicate, seconds = 60) {
-  const end = Date.now() + seconds * 1000;
-  for (;;) {
-    const value = await predicate();
-    if (value) return value;
-    if (Date.now() > end) throw new Error(`FAILED: timed out waiting for ${what}`);
-    await sleep(100);
-  }
-}
+const until = (what, predicate, seconds = 60) => waitFor(what, predicate, seconds);
 
 const browser = await puppeteer.launch({
   executablePath: '/usr/bin/chromium',

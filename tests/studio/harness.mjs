@@ -8,6 +8,20 @@ import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 
+export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// Polls `predicate` every 100 ms until it returns something truthy, which it returns; throws
+// naming `what` after `seconds`.
+export async function until(what, predicate, seconds) {
+  const end = Date.now() + seconds * 1000;
+  for (;;) {
+    const value = await predicate();
+    if (value) return value;
+    if (Date.now() > end) throw new Error(`FAILED: timed out waiting for ${what}`);
+    await sleep(100);
+  }
+}
+
 export function check(condition, message) {
   if (!condition) throw new Error(`FAILED: ${message}`);
   console.log(`ok: ${message}`);
