@@ -1,5 +1,8 @@
 #include "render/render_asset.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <system_error>
@@ -104,7 +107,10 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   out.seconds_scene = since(t0);
 
   auto t = Clock::now();
-  renderOne(r, threads, "scene.pov", "render.exr", metadataFor(r, 0, home), w, h);
+  // One POV-Ray thread per image: with more, POV-Ray's adaptive antialiasing compares pixels
+  // across blocks that other threads may or may not have rendered yet, so an image changes
+  // from run to run on a loaded machine (docs/rendering.md). Turntable frames use the cores.
+  renderOne(r, 1, "scene.pov", "render.exr", metadataFor(r, 0, home), w, h);
   out.seconds_still = since(t);
   t = Clock::now();
   exrToPng(out.render_exr, out.render_png, ocio);
@@ -115,18 +121,22 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
     // The turntable frames render at the still's size; the contact sheet is
     // a grid of them.
     t = Clock::now();
-    for (int i = 0; i < frames; ++i) {
-      SceneFrame f{i, frames, 360.0 * i / frames, r.params.turntable_lookdev};
-      const CameraSetup cam = frameCamera(meshes, w, h, f.turntable_deg);
-      const std::filesystem::path scene_rel = std::filesystem::path("turntable") / (frameName(i) + ".pov");
-      const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
-      // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
-      // relative to the working directory (the asset folder).
-      writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed),
-                 r.asset_dir / scene_rel);
-      renderOne(r, threads, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
-      out.turntable_frames.push_back(r.asset_dir / exr_rel);
-    }
+    out.turntable_frames.resize(std::size_t(frames));
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_for(0, frames, [&](int i) {
+        SceneFrame f{i, frames, 360.0 * i / frames, r.params.turntable_lookdev};
+        const CameraSetup cam = frameCamera(meshes, w, h, f.turntable_deg);
+        const std::filesystem::path scene_rel = std::filesystem::path("turntable") / (frameName(i) + ".pov");
+        const std::filesystem::path exr_rel = std::filesystem::path("turntable") / (frameName(i) + ".exr");
+        // The frame's scene lives beside its EXR but includes ../rock_mesh.inc
+        // relative to the working directory (the asset folder).
+        writeScene(turntable_template, scenePlaceholders(meshes, cam, home, f, "rock_mesh.inc", r.seed),
+                   r.asset_dir / scene_rel);
+        renderOne(r, 1, scene_rel, exr_rel, metadataFor(r, i, cam), w, h);
+        out.turntable_frames[std::size_t(i)] = r.asset_dir / exr_rel;
+      });
+    });
     out.seconds_turntable = since(t);
     t = Clock::now();
     out.turntable_sheet_exr = r.asset_dir / "turntable_sheet.exr";
