@@ -12,24 +12,10 @@
 
 #include "core/atomic_file.h"
 #include "export/glb_file.h"
+#include "export/gltf_buffer.h"
 
 namespace rockbake {
 namespace {
-
-// Appends `bytes` to the model's one buffer as a new view; returns the view's index.
-int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-  auto& data = model.buffers[0].data;
-  while (data.size() % 4) data.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = size;
-  view.target = target;
-  const auto* begin = static_cast<const unsigned char*>(bytes);
-  data.insert(data.end(), begin, begin + size);
-  model.bufferViews.push_back(view);
-  return int(model.bufferViews.size() - 1);
-}
 
 void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot, const std::string& name) {
   if (hull.positions.size() > std::numeric_limits<std::uint16_t>::max())
@@ -48,7 +34,7 @@ void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot,
       position.maxValues[a] = std::max(position.maxValues[a], double(q[a]));
   }
   position.bufferView =
-      addView(model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+      addBufferView(model, positions.data(), positions.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
   position.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   position.count = hull.positions.size();
   position.type = TINYGLTF_TYPE_VEC3;
@@ -59,8 +45,8 @@ void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot,
   for (const auto& t : hull.triangles)
     for (const std::uint32_t v : t) corners.push_back(std::uint16_t(v));
   tinygltf::Accessor indices;
-  indices.bufferView =
-      addView(model, corners.data(), corners.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  indices.bufferView = addBufferView(model, corners.data(), corners.size() * sizeof(std::uint16_t),
+                                     TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   indices.count = corners.size();
   indices.type = TINYGLTF_TYPE_SCALAR;

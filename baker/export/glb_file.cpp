@@ -10,27 +10,14 @@
 #include <tiny_gltf.h>
 
 #include "core/atomic_file.h"
+#include "export/gltf_buffer.h"
 
 namespace rockbake {
 namespace {
 
-// Appends `bytes` to the single buffer as a new view; returns the view's index.
-int addView(tinygltf::Model& model, const void* bytes, std::size_t size, int target) {
-  auto& data = model.buffers[0].data;
-  while (data.size() % 4) data.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = data.size();
-  view.byteLength = size;
-  view.target = target;
-  data.insert(data.end(), static_cast<const unsigned char*>(bytes), static_cast<const unsigned char*>(bytes) + size);
-  model.bufferViews.push_back(view);
-  return int(model.bufferViews.size() - 1);
-}
-
 int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, int components, bool bounds) {
   tinygltf::Accessor a;
-  a.bufferView = addView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.bufferView = addBufferView(model, values.data(), values.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   a.count = values.size() / std::size_t(components);
   a.type = components == 1   ? TINYGLTF_TYPE_SCALAR
@@ -134,8 +121,8 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   prim.attributes["_ALTITUDE"] = addFloatAccessor(model, m.altitude, 1, false);
 
   tinygltf::Accessor indices;
-  indices.bufferView = addView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),
-                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  indices.bufferView = addBufferView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),
+                                     TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
   indices.count = 3 * m.triangles.size();
   indices.type = TINYGLTF_TYPE_SCALAR;
