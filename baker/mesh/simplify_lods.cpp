@@ -11,8 +11,8 @@
 
 #include <meshoptimizer.h>
 #include <spdlog/spdlog.h>
-#include <tbb/parallel_invoke.h>
 
+#include "core/side_by_side.h"
 #include "core/vec3.h"
 #include "mesh/collapsed_specks.h"
 #include "mesh/mesh_defects.h"
@@ -152,8 +152,8 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
 
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
   AssetMeshes lod0;
-  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
-                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
+  sideBySide([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
+             [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
   lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
   lod0.durability_range = meshes.durability_range;
   return lod0;
@@ -175,8 +175,8 @@ std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams
       from = &meshes;
     AssetMeshes lod;
     const std::size_t level = lods.size() + 1;
-    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), level); },
-                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
+    sideBySide([&] { lod.rock = simplify(from->rock, count(rock), level); },
+               [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
     lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));
