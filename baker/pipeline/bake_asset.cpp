@@ -290,12 +290,18 @@ void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<Mes
     return;
   }
   bake.progress(0.8, "export");
-  bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+  // Two sets of files from separate data: written side by side.
+  sideBySide(
+      [&] {
+        bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+      },
+      [&] {
+        if (!exportsFormat(bake.preset, "vdb")) return;
+        Stopwatch clock;
+        writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
+        bake.timings.write_vdb = clock.lap();
+      });
   bake.clock.lap();
-  if (exportsFormat(bake.preset, "vdb")) {
-    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
-    bake.timings.write_vdb = bake.clock.lap();
-  }
 }
 
 void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures) {
