@@ -131,7 +131,10 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
     }
     if (score < best_score) best_score = score, best = std::move(pass);
     if (score == 0) break;
-    if (budget && (attempt < 4 || best->bad_edges == 0)) continue;
+    if (budget && attempt < 4) continue;
+    // Past the nudges a budget locks only around tears: with none, every pass
+    // left would repeat one already made (the same target and locks).
+    if (budget && best->bad_edges == 0) break;
     if (lock_around.empty()) {
       if (budget) continue;
       break;  // nothing to lock around
