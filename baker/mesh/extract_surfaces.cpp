@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include <spdlog/spdlog.h>
 
@@ -71,6 +72,44 @@ openvdb::BoolGrid::Ptr occupancy(const VoxelRock& rock, Material material) {
 
 using Crossed = std::vector<std::pair<openvdb::Coord, bool>>;  // (sample, inside)
 
+// The grid's voxels (with the mirrored layers below the ground) outside the
+// band whose value is not at least `margin` on their side, in z, y, x order.
+// Found among the material's voxels (those not inside) and among the field's
+// inactive values under the margin (the interior's tiles: those not of the
+// material), rather than by looking up every voxel of the grid.
+std::vector<openvdb::Coord> droppedFromBand(const openvdb::FloatGrid& sdf, const MaterialAt& material_at,
+                                            float margin) {
+  const GridLayout& g = material_at.rock.layout;
+  const int z0 = g.ground ? -kMirrorLayers : 0;
+  std::vector<openvdb::Coord> dropped;
+  auto acc = sdf.getConstAccessor();
+  for (int z = z0; z < g.nz; ++z) {
+    const int source = z < 0 ? -1 - z : z;  // a mirrored layer reads its original
+    for (int y = 0; y < g.ny; ++y) {
+      const Material* row = &material_at.rock.material[g.index(0, y, source)];
+      for (int x = 0; x < g.nx; ++x) {
+        if (row[x] != material_at.material) continue;
+        const openvdb::Coord c(x, y, z);
+        if (!acc.isValueOn(c) && acc.getValue(c) > -margin && material_at(c)) dropped.push_back(c);
+      }
+    }
+  }
+  const openvdb::CoordBBox grid(openvdb::Coord(0, 0, z0), openvdb::Coord(g.nx - 1, g.ny - 1, g.nz - 1));
+  for (auto it = sdf.tree().cbeginValueOff(); it; ++it) {
+    if (*it >= margin) continue;
+    openvdb::CoordBBox box;
+    it.getBoundingBox(box);
+    box.intersect(grid);
+    if (box.empty()) continue;
+    for (auto c = box.begin(); c; ++c)
+      if (!material_at(*c)) dropped.push_back(*c);
+  }
+  std::sort(dropped.begin(), dropped.end(), [](const openvdb::Coord& a, const openvdb::Coord& b) {
+    return std::make_tuple(a.z(), a.y(), a.x()) < std::make_tuple(b.z(), b.y(), b.x());
+  });
+  return dropped;
+}
+
 // Smoothing must not change what the rock is: every sample keeps the side of
 // its voxel (inside where the material is, outside elsewhere), so a one-voxel
 // neck stays connected and a one-voxel gap stays open; the surface still moves
@@ -96,13 +135,8 @@ Crossed holdSides(openvdb::FloatGrid& sdf, const MaterialAt& material_at) {
   // The filter's renormalisation can drop such a feature from the band
   // altogether (its voxels left as inactive background of the wrong sign).
   auto acc = sdf.getAccessor();
-  for (int z = g.ground ? -kMirrorLayers : 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) {
-        const openvdb::Coord c(x, y, z);
-        if (acc.isValueOn(c)) continue;
-        keepSide(c, acc.getValue(c), material_at(c), [&](float v) { acc.setValueOn(c, v); });
-      }
+  for (const openvdb::Coord& c : droppedFromBand(sdf, material_at, margin))
+    keepSide(c, acc.getValue(c), material_at(c), [&](float v) { acc.setValueOn(c, v); });
   return crossed;
 }
 
