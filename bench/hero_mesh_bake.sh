@@ -14,6 +14,12 @@
 #   large    this build at LARGE, 2 threads, end to end
 #   scaling  this build and the baseline at 1 thread, RESOLUTION; this build's files at 1 and 2 threads compared
 #   pair     two copies of this build at 1 thread at once (the machine's ceiling for two workers)
+# BASELINE_PRESET (environment): the goblin preset the baseline reads, for a baseline that
+#   predates keys of this one (say, the baseline's own checkout's presets/goblin.yaml)
+# PREVIOUS_ROCKBAKE (environment): a second build to compare against (say, the previous
+#   commit's), baked after the baseline in the hero and house runs
+# Texture maps are left out (`--no-textures`, for builds that make them): their cost is
+# measured on its own (bench/texture_cost.sh).
 # Run it alone on the machine; the previous runs' folders are replaced.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,10 +34,12 @@ mkdir -p "$out"
 
 # bake NAME EXECUTABLE THREADS RESOLUTION [render]: one bake, verbose log, peak memory (GNU time).
 bake() {
-  local render=(--no-render)
-  [ "${5:-}" = render ] && render=()
+  local flags=(--no-render) input=$preset
+  [ "${5:-}" = render ] && flags=()
+  "$2" bake --help | grep -q -- --no-textures && flags+=(--no-textures)
+  [ "$2" = "$baseline" ] && [ -n "${BASELINE_PRESET:-}" ] && input=$BASELINE_PRESET
   rm -rf "${out:?}/$1"
-  /usr/bin/time -f '%e %M' -o "$out/$1.time" "$2" -v bake "$preset" --resolution "$4" "${render[@]}" \
+  /usr/bin/time -f '%e %M' -o "$out/$1.time" "$2" -v bake "$input" --resolution "$4" "${flags[@]}" \
     --threads "$3" -o "$out/$1" > "$out/$1.log" 2>&1
 }
 
@@ -49,6 +57,7 @@ print(f"{name:>12}: wall {float(wall):6.1f} s, peak {int(rss_kb) / 1024:6.0f} Mi
       f"simulate {s['simulate']:6.1f}, mesh {mesh:6.1f} (extract {s.get('mesh_extract', 0):5.1f}, "
       f"subdivide {s.get('mesh_subdivide', 0):5.1f}, attributes {s.get('mesh_attributes', 0):4.1f}, "
       f"simplify {s.get('mesh_simplify', 0):5.1f}, export {s.get('export', 0):4.1f}), write_vdb {s.get('write_vdb', 0):4.1f}, "
+      f"collision {s.get('collision', 0):4.1f} (beside the meshes where the build overlaps them), "
       f"render {s.get('render', 0):5.1f}{tri}")
 PY
 }
@@ -66,9 +75,11 @@ for run in $runs; do
   case $run in
     hero)
       bake baseline "$baseline" 2 "$resolution"; report baseline
+      if [ -n "${PREVIOUS_ROCKBAKE:-}" ]; then bake previous "$PREVIOUS_ROCKBAKE" 2 "$resolution"; report previous; fi
       bake current "$current" 2 "$resolution"; report current ;;
     house)
       bake house-baseline "$baseline" 2 96; report house-baseline
+      if [ -n "${PREVIOUS_ROCKBAKE:-}" ]; then bake house-previous "$PREVIOUS_ROCKBAKE" 2 96; report house-previous; fi
       bake house-current "$current" 2 96; report house-current
       same house-baseline house-current ;;
     large)

@@ -7,7 +7,8 @@
 //
 // Each material's occupancy becomes a narrow-band level set (zero crossing on
 // the voxel faces), smoothed by `smoothing` passes of a width-1 Gaussian
-// level-set filter, and polygonised at the zero crossing (OpenVDB, TBB-parallel).
+// level-set filter (one renormalisation sweep between its box passes, three
+// after the last), and polygonised at the zero crossing (OpenVDB, TBB-parallel).
 // Every voxel's sample keeps its side after smoothing; one that smoothing
 // moved across (a voxel-thin part of the rock) is held a quarter voxel deep,
 // with the distance bound restored around it, so such a part stays about half
@@ -33,11 +34,11 @@ struct SmoothedSdf;  // core/openvdb_support.h
 
 struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)
-  // The studio's live preview: after each smoothing pass the band is
-  // renormalised once with first-order differences instead of three times
-  // with fifth-order ones (OpenVDB's default), in a two-voxel band: about 4x
-  // cheaper. Its vertices lie within half a voxel of the bake's surface (about
-  // a fiftieth on average); every voxel keeps its side, as in the bake.
+  // The studio's live preview: the band is renormalised once after every box
+  // pass, with first-order differences instead of fifth-order ones (WENO5),
+  // in a two-voxel band.
+  // Its vertices lie within half a voxel of the bake's surface (about a
+  // fiftieth on average); every voxel keeps its side, as in the bake.
   bool preview = false;
 };
 

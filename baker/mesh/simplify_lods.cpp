@@ -11,8 +11,9 @@
 
 #include <meshoptimizer.h>
 #include <spdlog/spdlog.h>
-#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_for.h>
 
+#include "core/side_by_side.h"
 #include "core/vec3.h"
 #include "mesh/collapsed_specks.h"
 #include "mesh/mesh_defects.h"
@@ -113,13 +114,23 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
   std::optional<SimplifyPass> best;
   std::size_t best_score = std::numeric_limits<std::size_t>::max();
   double radius = 2.0 * meanEdgeLength(m);
-  for (int attempt = 0; attempt < kPasses; ++attempt) {
+  const auto runPass = [&](int attempt) {
     const std::size_t pass_target =
         budget ? std::min(std::max<std::size_t>(4, std::size_t(double(target / 3) * kNudge[attempt])) * 3, index_count)
                : target;
     SimplifyPass pass = simplifyPass(m, indices, locked, pass_target, relative_error, level);
     // A budget has no error bound to keep: what the repair left is relaxed away before the passes are compared.
     if (budget && pass.bad_edges == 0 && pass.folds_left > 0) relaxLeftovers(pass);
+    return pass;
+  };
+  // A budget's nudged passes lock nothing, so they do not depend on each other: once the first is not clean, the
+  // other four run side by side, and are weighed below in order as if made one after another.
+  constexpr int kNudged = 5;
+  std::array<std::optional<SimplifyPass>, kNudged> nudged;
+  for (int attempt = 0; attempt < kPasses; ++attempt) {
+    if (budget && attempt == 1) tbb::parallel_for(1, kNudged, [&](int a) { nudged[std::size_t(a)] = runPass(a); });
+    SimplifyPass pass =
+        budget && attempt >= 1 && attempt < kNudged ? std::move(*nudged[std::size_t(attempt)]) : runPass(attempt);
     std::vector<Vec3f> folds;
     for (const Vec3f& p : pass.folded)
       if (!std::binary_search(inherited.begin(), inherited.end(), p)) folds.push_back(p);
@@ -131,7 +142,10 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
     }
     if (score < best_score) best_score = score, best = std::move(pass);
     if (score == 0) break;
-    if (budget && (attempt < 4 || best->bad_edges == 0)) continue;
+    if (budget && attempt < kNudged - 1) continue;
+    // Past the nudges a budget locks only around tears: with none, every pass
+    // left would repeat one already made (the same target and locks).
+    if (budget && best->bad_edges == 0) break;
     if (lock_around.empty()) {
       if (budget) continue;
       break;  // nothing to lock around
@@ -152,8 +166,8 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
 
 AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
   AssetMeshes lod0;
-  tbb::parallel_invoke([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
-                       [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
+  sideBySide([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
+             [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
   lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
   lod0.durability_range = meshes.durability_range;
   return lod0;
@@ -175,8 +189,8 @@ std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams
       from = &meshes;
     AssetMeshes lod;
     const std::size_t level = lods.size() + 1;
-    tbb::parallel_invoke([&] { lod.rock = simplify(from->rock, count(rock), level); },
-                         [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
+    sideBySide([&] { lod.rock = simplify(from->rock, count(rock), level); },
+               [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
     lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));

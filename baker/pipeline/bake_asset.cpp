@@ -12,8 +12,10 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/side_by_side.h"
 #include "core/stopwatch.h"
 #include "export/vdb_file.h"
+#include "mesh/extract_surfaces.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/asset_json.h"
 #include "pipeline/bake_collision.h"
@@ -216,17 +218,40 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   return weathered;
 }
 
-// The meshes in memory: LOD0, the LOD chain and, for a texture set, the bake source (pipeline/bake_meshes.h);
-// none with --no-mesh.
+// The meshes in memory: LOD0, the LOD chain and, for a texture set, the bake source (pipeline/bake_meshes.h).
 std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered) {
-  bake.checkCancel();
-  if (!bake.options.mesh) return std::nullopt;
-  bake.progress(0.7, "mesh");
   MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
   bake.timings.mesh =
       MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds, meshes.simplify_seconds};
-  bake.clock.lap();
   return meshes;
+}
+
+// collision.glb when export lists collision (pipeline/bake_collision.h), around the meshes' pivot.
+std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered) {
+  if (!exportsFormat(bake.preset, "collision")) return std::nullopt;
+  Stopwatch clock;
+  AssetCollision collision =
+      bakeCollision(weathered.rock, bake.preset.collision, footprintPivot(weathered.rock), bake.dir());
+  bake.timings.collision = clock.lap();
+  return collision;
+}
+
+struct Shapes {
+  std::optional<MeshStageResult> meshes;
+  std::optional<AssetCollision> collision;
+};
+
+// The meshes and the collision hulls, none with --no-mesh. Both read the weathered rock alone, so they are made
+// side by side: the hulls take up the cores the mesh stage's serial steps leave idle. Each is the same at any
+// thread count, so the files are too.
+Shapes meshAndCollide(Bake& bake, const Weathered& weathered) {
+  bake.checkCancel();
+  Shapes shapes;
+  if (!bake.options.mesh) return shapes;
+  bake.progress(0.7, "mesh");
+  sideBySide([&] { shapes.meshes = mesh(bake, weathered); }, [&] { shapes.collision = collide(bake, weathered); });
+  bake.clock.lap();
+  return shapes;
 }
 
 // The texture set in OUT/<name>/textures/ (docs/textures.md): every LOD unwrapped, its tangent frames, its maps
@@ -265,12 +290,18 @@ void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<Mes
     return;
   }
   bake.progress(0.8, "export");
-  bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+  // Two sets of files from separate data: written side by side.
+  sideBySide(
+      [&] {
+        bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+      },
+      [&] {
+        if (!exportsFormat(bake.preset, "vdb")) return;
+        Stopwatch clock;
+        writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
+        bake.timings.write_vdb = clock.lap();
+      });
   bake.clock.lap();
-  if (exportsFormat(bake.preset, "vdb")) {
-    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
-    bake.timings.write_vdb = bake.clock.lap();
-  }
 }
 
 void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures) {
@@ -297,18 +328,6 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
     spdlog::info("{}: {} frames, the turntable in {:.1f} s and its movie in {:.2f} s", bake.preset.name,
                  rendered.turntable_frames.size(), rendered.seconds_turntable, rendered.seconds_movie);
   bake.clock.lap();
-}
-
-// collision.glb when export lists collision (pipeline/bake_collision.h): with meshes only, whose pivot and names
-// it shares.
-std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered,
-                                      const std::optional<MeshStageResult>& meshes) {
-  if (!meshes || !exportsFormat(bake.preset, "collision")) return std::nullopt;
-  bake.checkCancel();
-  bake.progress(0.8, "collision");
-  AssetCollision collision = bakeCollision(weathered.rock, bake.preset.collision, meshes->pivot, bake.dir());
-  bake.timings.collision = bake.clock.lap();
-  return collision;
 }
 
 // asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only; the LODs as shipped (split
@@ -386,10 +405,9 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   Bake bake(preset, options);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
-  std::optional<MeshStageResult> meshes = mesh(bake, weathered);
+  auto [meshes, collision] = meshAndCollide(bake, weathered);
   const std::optional<TextureSet> textures = texture(bake, weathered, meshes);
   exportFiles(bake, weathered, meshes, textures);
-  const std::optional<AssetCollision> collision = collide(bake, weathered, meshes);
   render(bake, meshes, textures);
   describe(bake, meshes, textures, collision);
   writeStats(bake, weathered);

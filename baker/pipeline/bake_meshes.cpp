@@ -1,6 +1,7 @@
 #include "pipeline/bake_meshes.h"
 
 #include "core/mesh_checks.h"
+#include "core/side_by_side.h"
 #include "core/stopwatch.h"
 
 #include <algorithm>
@@ -40,22 +41,28 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   // too coarse to carry the detail (mesh/refinement_levels.h).
   r.subdivision_levels = refinementLevels(preset.mesh.subdivision, g.h, preset.mesh.detail);
   const SubdivideParams levels{r.subdivision_levels};
-  meshes.rock = subdivideSurface(meshes.rock, levels);
-  meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
-  // Catmull-Clark pulls the surface inside the field it was extracted from: put
-  // it back on it. Then give back the voxels' volume smoothing rounded off.
-  projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
+  // The two surfaces are refined side by side (each step reads its own surface and field only).
   const double voxel = g.h * g.h * g.h;
-  const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
-  matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
-  r.rock_sdf = offsetField(r.rock_sdf, delta, g.ground);
-  // The shift along vertex normals and the field's shift agree only where its
-  // gradient has unit length: settle the vertices on the field rock.vdb keeps.
-  projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
-  // Where the field is creased (a voxel-thin part), projected neighbours can
-  // land folded over each other: flip those edges back (no vertex moves).
-  repairFoldOvers(meshes.rock);
-  repairFoldOvers(meshes.colluvium);
+  sideBySide(
+      [&] {
+        meshes.rock = subdivideSurface(meshes.rock, levels);
+        // Catmull-Clark pulls the surface inside the field it was extracted from: put
+        // it back on it. Then give back the voxels' volume smoothing rounded off.
+        projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
+        const double delta = matchVolume(meshes.rock, double(rock.count(Material::Rock)) * voxel, 0.5 * g.h, g.ground);
+        r.rock_sdf = offsetField(r.rock_sdf, delta, g.ground);
+        // The shift along vertex normals and the field's shift agree only where its
+        // gradient has unit length: settle the vertices on the field rock.vdb keeps.
+        projectOntoField(meshes.rock, r.rock_sdf.get(), g.ground);
+        // Where the field is creased (a voxel-thin part), projected neighbours can
+        // land folded over each other: flip those edges back (no vertex moves).
+        repairFoldOvers(meshes.rock);
+      },
+      [&] {
+        meshes.colluvium = subdivideSurface(meshes.colluvium, levels);
+        matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
+        repairFoldOvers(meshes.colluvium);
+      });
   r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);

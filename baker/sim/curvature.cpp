@@ -15,6 +15,7 @@
 #endif
 
 #include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
 
 namespace rockbake {
 
@@ -34,10 +35,12 @@ AirField::AirField(const VoxelRock& rock, int apron) : apron_(apron) {
         std::fill(row, row + words_per_row_, 0);
       }
   }
-  for (int z = 0; z < g.nz; ++z)
+  // Layers in parallel: each row's bits live in words of their own.
+  tbb::parallel_for(0, g.nz, [&](int z) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x)
         if (rock.material[g.index(x, y, z)] != Material::Air) setAir(x, y, z, false);
+  });
 }
 
 void AirField::setAir(int x, int y, int z, bool air) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -16,6 +17,23 @@ using Cell = std::uint32_t;
 
 inline bool isSolid(Material m) {
   return m != Material::Air;
+}
+
+// The first x >= from in row[from, end) whose cell is not `solid` (solid or air), or end. Eight
+// cells at a time while they are all alike: rows are long runs of air or of rock, and the rockfall
+// check reads every cell of the grid each cycle.
+int runEnd(const Material* row, int from, int end, bool solid) {
+  static_assert(sizeof(Material) == 1 && std::uint8_t(Material::Air) == 0);
+  constexpr std::uint64_t kOnes = 0x0101010101010101ull, kHighs = 0x8080808080808080ull;
+  int x = from;
+  for (; x + 8 <= end; x += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, row + x, 8);
+    const bool has_air = ((w - kOnes) & ~w & kHighs) != 0;  // some byte is zero
+    if (solid ? has_air : w != 0) break;
+  }
+  while (x < end && isSolid(row[x]) == solid) ++x;
+  return x;
 }
 
 }  // namespace
@@ -178,12 +196,10 @@ std::vector<Cell> RockfallSolver::floatingCells(const VoxelRock& rock) const {
       const Material* row = &rock.material[g.index(0, y, z)];
       std::uint32_t count = 0;
       for (int x = 0; x < g.nx;) {
-        if (!isSolid(row[x])) {
-          ++x;
-          continue;
-        }
+        x = runEnd(row, x, g.nx, false);
+        if (x == g.nx) break;
         const int x0 = x;
-        while (x < g.nx && isSolid(row[x])) ++x;
+        x = runEnd(row, x, g.nx, true);
         runs.push_back({x0, x - 1});
         ++count;
       }

@@ -46,7 +46,8 @@ inline std::size_t solidCount(const VoxelRock& rock) {
 }
 
 // Independent check: every solid voxel is 6-connected to the layer z = 0.
-inline bool nothingFloats(const VoxelRock& rock) {
+// Solid cells not joined to the ground (z = 0) through face neighbours, by a plain flood fill.
+inline std::size_t floatingCount(const VoxelRock& rock) {
   const GridLayout& g = rock.layout;
   std::vector<std::uint8_t> reached(g.cellCount(), 0);
   std::deque<std::array<int, 3>> queue;
@@ -64,9 +65,13 @@ inline bool nothingFloats(const VoxelRock& rock) {
       queue.push_back({a, b, c});
     }
   }
-  for (std::size_t i = 0; i < reached.size(); ++i)
-    if (rock.material[i] != Material::Air && !reached[i]) return false;
-  return true;
+  std::size_t floating = 0;
+  for (std::size_t i = 0; i < reached.size(); ++i) floating += rock.material[i] != Material::Air && !reached[i];
+  return floating;
+}
+
+inline bool nothingFloats(const VoxelRock& rock) {
+  return floatingCount(rock) == 0;
 }
 
 // A preset that weathers a rock with a soft neck, rockfall and colluvium on.
