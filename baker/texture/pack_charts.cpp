@@ -1,6 +1,7 @@
 #include "texture/pack_charts.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -161,42 +162,88 @@ struct Spot {
   int x = 0, y = 0, turn = 0;
 };
 
-// Where a footprint comes to rest on the horizon with its first column at x: how high it sits,
-// or nothing when that is higher than `above` (the best found so far); and how much empty
-// space it leaves beneath it.
-bool rest(const Footprint& f, const std::vector<int>& horizon, int x, int above, int& y, long& waste) {
-  y = 0;
-  for (int i = 0; i < f.width; ++i)
-    if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)]) {
-      y = std::max(y, horizon[std::size_t(x + i)] - f.bottom[std::size_t(i)]);
-      if (y > above) return false;
+// The texels packed so far, per column a bitset of rows (1: taken by a grown footprint), rows
+// 0 … 4 · size − 1: packings taller than the map are measured too, to rescale the density.
+class Occupancy {
+ public:
+  Occupancy(int columns, int rows) : words_((rows + 63) / 64), rows_(rows), bits_(std::size_t(columns) * words_, 0) {}
+
+  int rows() const { return rows_; }
+
+  // The first taken row of column x in [from, to), or −1.
+  int firstTaken(int x, int from, int to) const {
+    const std::uint64_t* col = &bits_[std::size_t(x) * words_];
+    for (int w = from >> 6; w << 6 < to; ++w) {
+      std::uint64_t bits = col[w];
+      if (w == from >> 6) bits &= ~std::uint64_t(0) << (from & 63);
+      if (bits == 0) continue;
+      const int r = (w << 6) + std::countr_zero(bits);
+      return r < to ? r : -1;
     }
-  waste = 0;
-  for (int i = 0; i < f.width; ++i)
-    if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)])
-      waste += y + f.bottom[std::size_t(i)] - horizon[std::size_t(x + i)];
+    return -1;
+  }
+
+  // The first free row of column x at or above `from` (rows_ when there is none).
+  int firstFree(int x, int from) const {
+    const std::uint64_t* col = &bits_[std::size_t(x) * words_];
+    for (int w = from >> 6; w < int(words_); ++w) {
+      std::uint64_t bits = ~col[w];
+      if (w == from >> 6) bits &= ~std::uint64_t(0) << (from & 63);
+      if (bits != 0) return std::min(rows_, (w << 6) + std::countr_zero(bits));
+    }
+    return rows_;
+  }
+
+  void take(int x, int from, int to) {
+    std::uint64_t* col = &bits_[std::size_t(x) * words_];
+    for (int r = from; r < to; ++r) col[r >> 6] |= std::uint64_t(1) << (r & 63);
+  }
+
+ private:
+  std::size_t words_;
+  int rows_;
+  std::vector<std::uint64_t> bits_;
+};
+
+// The lowest row at which a footprint with its first column at x meets no taken texel (below
+// the packing's top, into any hole large enough, as well as on it), or nothing when that is
+// higher than `above` (the best found so far) or than the rows held. Each taken texel in the
+// way lifts the footprint to just past the run it belongs to, until none is in the way.
+bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, int& y) {
+  y = 0;
+  for (bool lifted = true; lifted;) {
+    lifted = false;
+    for (int i = 0; i < f.width; ++i) {
+      const int bottom = f.bottom[std::size_t(i)], top = f.top[std::size_t(i)];
+      if (bottom > top) continue;
+      if (y + top > taken.rows()) return false;
+      const int r = taken.firstTaken(x + i, y + bottom, y + top);
+      if (r < 0) continue;
+      y = taken.firstFree(x + i, r) - bottom;
+      if (y > above) return false;
+      lifted = true;
+    }
+  }
   return true;
 }
 
-// Every chart dropped onto the horizon, biggest first, where it rests lowest (ties: the least
-// empty space beneath it, then further left, then unturned): every kStride-th column first,
-// then each column near the best of those. Returns the packing's height, or more than `size`
-// when a chart is wider than the map.
+// Every chart placed, biggest first, where it rests lowest in what is packed so far (holes
+// left beneath earlier charts included; ties: further left, then unturned): every kStride-th
+// column first, then each column near the best of those. Returns the packing's height, or more
+// than `size` when a chart is wider than the map or the packing outgrows the rows held.
 int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<std::size_t>& order, int size,
          std::vector<Spot>& spots) {
   constexpr int kStride = 8;
-  std::vector<int> horizon(std::size_t(size), 0);
+  Occupancy taken(size, 4 * size);
   int height = 0;
   spots.assign(prints.size(), Spot{});
   for (std::size_t c : order) {
     int best_y = std::numeric_limits<int>::max();
-    long best_waste = std::numeric_limits<long>::max();
     Spot best{-1, 0, 0};
     const auto consider = [&](int turn, int x) {
       int y = 0;
-      long waste = 0;
-      if (!rest(prints[c][std::size_t(turn)], horizon, x, best_y, y, waste)) return;
-      if (y < best_y || (y == best_y && waste < best_waste)) best_y = y, best_waste = waste, best = {x, y, turn};
+      if (!lowestFree(prints[c][std::size_t(turn)], taken, x, best_y - 1, y)) return;
+      best_y = y, best = {x, y, turn};
     };
     for (int turn = 0; turn < 4; ++turn) {
       const int last = size - prints[c][std::size_t(turn)].width;
@@ -207,12 +254,12 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
     const Spot coarse = best;
     const int last = size - prints[c][std::size_t(coarse.turn)].width;
     for (int x = std::max(0, coarse.x - kStride + 1); x <= std::min(last, coarse.x + kStride - 1); ++x)
-      consider(coarse.turn, x);
+      if (x != coarse.x) consider(coarse.turn, x);
     const Footprint& f = prints[c][std::size_t(best.turn)];
     for (int i = 0; i < f.width; ++i)
       if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)]) {
-        horizon[std::size_t(best.x + i)] = best.y + f.top[std::size_t(i)];
-        height = std::max(height, horizon[std::size_t(best.x + i)]);
+        taken.take(best.x + i, best.y + f.bottom[std::size_t(i)], best.y + f.top[std::size_t(i)]);
+        height = std::max(height, best.y + f.top[std::size_t(i)]);
       }
     spots[c] = best;
   }
