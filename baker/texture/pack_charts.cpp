@@ -79,18 +79,33 @@ Placement orient(const std::vector<UV>& uv) {
   return best.height > best.width ? best.quarterTurn() : best;
 }
 
-// A chart's footprint at one density: per column of texels, the lowest row its triangles touch
-// and one past the highest (an empty column has bottom > top), grown by `grow` texels each way
-// (a chessboard dilation, on the profiles: the packer only ever reads them), with the chart
+// A chart's footprint at one density: per column of texels, the runs of rows its triangles touch
+// (ascending, apart), grown by `grow` texels each way (a chessboard dilation), with the chart
 // itself `grow` texels in from the footprint's lower corner.
+struct Run {
+  int from = 0, to = 0;  // rows [from, to)
+};
+
 struct Footprint {
   int width = 0, height = 0;
-  std::vector<int> bottom, top;
+  std::vector<std::vector<Run>> columns;
 };
+
+// Sorts runs and merges those that overlap or touch.
+void mergeRuns(std::vector<Run>& runs) {
+  std::sort(runs.begin(), runs.end(), [](const Run& a, const Run& b) { return a.from < b.from; });
+  std::size_t n = 0;
+  for (const Run& r : runs)
+    if (n > 0 && r.from <= runs[n - 1].to)
+      runs[n - 1].to = std::max(runs[n - 1].to, r.to);
+    else
+      runs[n++] = r;
+  runs.resize(n);
+}
 
 Footprint footprint(const PackChart& chart, const Placement& place, double density, int grow) {
   const int width = int(std::ceil(density * place.width)) + 1, height = int(std::ceil(density * place.height)) + 1;
-  std::vector<int> low(std::size_t(width), std::numeric_limits<int>::max()), high(std::size_t(width), -1);
+  std::vector<std::vector<Run>> touched(static_cast<std::size_t>(width));
   std::vector<UV> p(chart.uv.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     const UV q = place.apply(chart.uv[i]);
@@ -118,27 +133,24 @@ Footprint footprint(const PackChart& chart, const Placement& place, double densi
       return true;
     };
     for (int x = x0; x <= x1; ++x) {
-      int y = y0;  // the column's first and last touched texel
+      int y = y0;  // the column's first and last touched texel: a convex shape's are contiguous
       while (y <= y1 && !inside(x, y)) ++y;
       if (y > y1) continue;
       int z = y1;
       while (z > y && !inside(x, z)) --z;
-      low[std::size_t(x)] = std::min(low[std::size_t(x)], y);
-      high[std::size_t(x)] = std::max(high[std::size_t(x)], z);
+      touched[std::size_t(x)].push_back({y, z + 1});
     }
   }
   Footprint f;
   f.width = width + 2 * grow;
   f.height = height + 2 * grow;
-  f.bottom.assign(std::size_t(f.width), std::numeric_limits<int>::max());
-  f.top.assign(std::size_t(f.width), std::numeric_limits<int>::min());
+  f.columns.resize(std::size_t(f.width));
   for (int x = 0; x < width; ++x) {
-    if (high[std::size_t(x)] < 0) continue;
-    for (int d = 0; d <= 2 * grow; ++d) {  // column x lands at x + grow; grown, it reaches x … x + 2 · grow
-      f.bottom[std::size_t(x + d)] = std::min(f.bottom[std::size_t(x + d)], low[std::size_t(x)]);
-      f.top[std::size_t(x + d)] = std::max(f.top[std::size_t(x + d)], high[std::size_t(x)] + 2 * grow + 1);
-    }
+    mergeRuns(touched[std::size_t(x)]);
+    for (int d = 0; d <= 2 * grow; ++d)  // column x lands at x + grow; grown, it reaches x … x + 2 · grow
+      for (const Run& r : touched[std::size_t(x)]) f.columns[std::size_t(x + d)].push_back({r.from, r.to + 2 * grow});
   }
+  for (auto& runs : f.columns) mergeRuns(runs);
   return f;
 }
 
@@ -146,14 +158,10 @@ Footprint footprint(const PackChart& chart, const Placement& place, double densi
 Footprint halfTurn(const Footprint& f) {
   Footprint r = f;
   for (int x = 0; x < f.width; ++x) {
-    const std::size_t from = std::size_t(f.width - 1 - x);
-    if (f.bottom[from] > f.top[from]) {
-      r.bottom[std::size_t(x)] = std::numeric_limits<int>::max(),
-      r.top[std::size_t(x)] = std::numeric_limits<int>::min();
-      continue;
-    }
-    r.bottom[std::size_t(x)] = f.height - f.top[from];
-    r.top[std::size_t(x)] = f.height - f.bottom[from];
+    const auto& from = f.columns[std::size_t(f.width - 1 - x)];
+    auto& to = r.columns[std::size_t(x)];
+    to.clear();
+    for (auto run = from.rbegin(); run != from.rend(); ++run) to.push_back({f.height - run->to, f.height - run->from});
   }
   return r;
 }
@@ -213,16 +221,15 @@ bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, in
   y = 0;
   for (bool lifted = true; lifted;) {
     lifted = false;
-    for (int i = 0; i < f.width; ++i) {
-      const int bottom = f.bottom[std::size_t(i)], top = f.top[std::size_t(i)];
-      if (bottom > top) continue;
-      if (y + top > taken.rows()) return false;
-      const int r = taken.firstTaken(x + i, y + bottom, y + top);
-      if (r < 0) continue;
-      y = taken.firstFree(x + i, r) - bottom;
-      if (y > above) return false;
-      lifted = true;
-    }
+    for (int i = 0; i < f.width; ++i)
+      for (const Run& run : f.columns[std::size_t(i)]) {
+        if (y + run.to > taken.rows()) return false;
+        const int r = taken.firstTaken(x + i, y + run.from, y + run.to);
+        if (r < 0) continue;
+        y = taken.firstFree(x + i, r) - run.from;
+        if (y > above) return false;
+        lifted = true;
+      }
   }
   return true;
 }
@@ -257,9 +264,9 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
       if (x != coarse.x) consider(coarse.turn, x);
     const Footprint& f = prints[c][std::size_t(best.turn)];
     for (int i = 0; i < f.width; ++i)
-      if (f.bottom[std::size_t(i)] <= f.top[std::size_t(i)]) {
-        taken.take(best.x + i, best.y + f.bottom[std::size_t(i)], best.y + f.top[std::size_t(i)]);
-        height = std::max(height, best.y + f.top[std::size_t(i)]);
+      for (const Run& run : f.columns[std::size_t(i)]) {
+        taken.take(best.x + i, best.y + run.from, best.y + run.to);
+        height = std::max(height, best.y + run.to);
       }
     spots[c] = best;
   }

@@ -1,13 +1,14 @@
 // Chart packing for the UV atlas (docs/textures.md): the "Tetris" packing of Lévy, Petitjean,
 // Ray and Maillot ("Least Squares Conformal Maps for Automatic Texture Atlas Generation",
-// SIGGRAPH 2002, §6), written from the paper: each chart, turned to its smallest bounding
-// rectangle (rotating calipers over its convex hull) and tried at each quarter turn, is
-// rasterised at the atlas's texel density (every texel its triangles touch), grown by half the
-// gutter, and described by its bottom and top profile per column; charts go in by decreasing
-// area, each dropped onto the horizon (the highest texel filled so far in each column) where it
-// rests lowest, then where it leaves the least empty space beneath it. So a chart's jagged edge
-// nests into its neighbours' instead of reserving its bounding rectangle. Any two charts end up at least `padding`
-// texels apart (between texel centres they cover), and `padding` / 2 from the map's edges.
+// SIGGRAPH 2002, §6), written from the paper, with the holes it leaves filled: each chart,
+// turned to its smallest bounding rectangle (rotating calipers over its convex hull) and tried
+// at each quarter turn, is rasterised at the atlas's texel density (every texel its triangles
+// touch, as runs of rows per column) and grown by half the gutter; charts go in by decreasing
+// bounding-rectangle area, each dropped to the lowest row where it meets no texel taken so far,
+// in a hole beneath earlier charts as well as on top of them. So a chart's jagged edge nests
+// into its neighbours' and small charts fill the gaps big ones leave. Any two charts end up at
+// least `padding` texels apart (between texel centres they cover), and `padding` / 2 from the
+// map's edges.
 //
 // The density is the largest a few rounds of packing find whose charts fit `size` texels down
 // (the width is the map's): each round scales it by the square root of the height it missed by,
