@@ -174,9 +174,15 @@ struct Spot {
 // 0 … 4 · size − 1: packings taller than the map are measured too, to rescale the density.
 class Occupancy {
  public:
-  Occupancy(int columns, int rows) : words_((rows + 63) / 64), rows_(rows), bits_(std::size_t(columns) * words_, 0) {}
+  Occupancy(int columns, int rows)
+      : words_((rows + 63) / 64),
+        rows_(rows),
+        bits_(std::size_t(columns) * words_, 0),
+        floor_(std::size_t(columns), 0) {}
 
   int rows() const { return rows_; }
+  // Column x's lowest free row: no texel of a footprint there can sit lower.
+  int floor(int x) const { return floor_[std::size_t(x)]; }
 
   // The first taken row of column x in [from, to), or −1.
   int firstTaken(int x, int from, int to) const {
@@ -205,12 +211,14 @@ class Occupancy {
   void take(int x, int from, int to) {
     std::uint64_t* col = &bits_[std::size_t(x) * words_];
     for (int r = from; r < to; ++r) col[r >> 6] |= std::uint64_t(1) << (r & 63);
+    floor_[std::size_t(x)] = firstFree(x, floor_[std::size_t(x)]);
   }
 
  private:
   std::size_t words_;
   int rows_;
   std::vector<std::uint64_t> bits_;
+  std::vector<int> floor_;
 };
 
 // The lowest row at which a footprint with its first column at x meets no taken texel (below
@@ -218,7 +226,11 @@ class Occupancy {
 // higher than `above` (the best found so far) or than the rows held. Each taken texel in the
 // way lifts the footprint to just past the run it belongs to, until none is in the way.
 bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, int& y) {
-  y = 0;
+  y = 0;  // start where each column's lowest run meets that column's lowest free row
+  for (int i = 0; i < f.width; ++i)
+    if (!f.columns[std::size_t(i)].empty())
+      y = std::max(y, taken.floor(x + i) - f.columns[std::size_t(i)].front().from);
+  if (y > above) return false;
   for (bool lifted = true; lifted;) {
     lifted = false;
     for (int i = 0; i < f.width; ++i)
@@ -237,9 +249,10 @@ bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, in
 // Every chart placed, biggest first, where it rests lowest in what is packed so far (holes
 // left beneath earlier charts included; ties: further left, then unturned): every kStride-th
 // column first, then each column near the best of those. Returns the packing's height, or more
-// than `size` when a chart is wider than the map or the packing outgrows the rows held.
+// than `size` when a chart is wider than the map, the packing outgrows the rows held, or (with
+// `fit_only`, when only whether it fits matters) as soon as it is taller than the map.
 int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<std::size_t>& order, int size,
-         std::vector<Spot>& spots) {
+         bool fit_only, std::vector<Spot>& spots) {
   constexpr int kStride = 8;
   Occupancy taken(size, 4 * size);
   int height = 0;
@@ -269,6 +282,7 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
         height = std::max(height, best.y + run.to);
       }
     spots[c] = best;
+    if (fit_only && height > size) return height;
   }
   return height;
 }
@@ -307,7 +321,8 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
       prints[i][2] = footprint(charts[i], place[i].quarterTurn(), density, grow);
       prints[i][3] = halfTurn(prints[i][2]);
     });
-    const int height = drop(prints, order, size, spots);
+    // Once bracketed, the density is bisected: how far a packing misses by no longer matters.
+    const int height = drop(prints, order, size, fits > 0 && fails > 0, spots);
     if (height <= size) {
       fits = density;
       best_spots = spots;
