@@ -249,13 +249,17 @@ bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, in
 // Every chart placed, biggest first, where it rests lowest in what is packed so far (holes
 // left beneath earlier charts included; ties: further left, then unturned): every kStride-th
 // column first, then each column near the best of those. Returns the packing's height, or more
-// than `size` when a chart is wider than the map, the packing outgrows the rows held, or (with
-// `fit_only`, when only whether it fits matters) as soon as it is taller than the map.
+// than `size` when a chart is wider than the map or the packing outgrows the map (it stops
+// there: `placed` gives the share of the footprints' texels placed by then, 1 when all fit).
 int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<std::size_t>& order, int size,
-         bool fit_only, std::vector<Spot>& spots) {
+         std::vector<Spot>& spots, double& placed) {
   constexpr int kStride = 8;
   Occupancy taken(size, 4 * size);
   int height = 0;
+  double placed_texels = 0, texels = 0;
+  for (const auto& p : prints)
+    for (const auto& runs : p[0].columns)
+      for (const Run& run : runs) texels += run.to - run.from;
   spots.assign(prints.size(), Spot{});
   for (std::size_t c : order) {
     int best_y = std::numeric_limits<int>::max();
@@ -270,7 +274,10 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
       for (int x = 0; x <= last; x += kStride) consider(turn, x);
       if (last >= 0 && last % kStride != 0) consider(turn, last);
     }
-    if (best.x < 0) return std::numeric_limits<int>::max();
+    if (best.x < 0) {
+      placed = 0;  // wider than the map: shrink as far as a round may
+      return std::numeric_limits<int>::max();
+    }
     const Spot coarse = best;
     const int last = size - prints[c][std::size_t(coarse.turn)].width;
     for (int x = std::max(0, coarse.x - kStride + 1); x <= std::min(last, coarse.x + kStride - 1); ++x)
@@ -282,8 +289,11 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
         height = std::max(height, best.y + run.to);
       }
     spots[c] = best;
-    if (fit_only && height > size) return height;
+    for (const auto& runs : f.columns)
+      for (const Run& run : runs) placed_texels += run.to - run.from;
+    if (height > size) break;
   }
+  placed = texels > 0 ? placed_texels / texels : 1.0;
   return height;
 }
 
@@ -321,8 +331,8 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
       prints[i][2] = footprint(charts[i], place[i].quarterTurn(), density, grow);
       prints[i][3] = halfTurn(prints[i][2]);
     });
-    // Once bracketed, the density is bisected: how far a packing misses by no longer matters.
-    const int height = drop(prints, order, size, fits > 0 && fails > 0, spots);
+    double placed = 1;
+    const int height = drop(prints, order, size, spots, placed);
     if (height <= size) {
       fits = density;
       best_spots = spots;
@@ -333,8 +343,9 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
     }
     if (fits > 0 && fails > 0)
       density = std::sqrt(fits * fails);
-    else  // heights go with the square of the density
-      density *= std::sqrt(std::clamp(double(size) / std::max(height, 1), 0.25, 4.0));
+    else  // heights, and the texels a packing too tall for the map placed, go with its square
+      density *= std::sqrt(height <= size ? std::min(double(size) / std::max(height, 1), 4.0)
+                                          : std::clamp(std::min(placed, double(size) / height), 0.25, 0.9));
     if (fits > 0 && fails > 0 && fails / fits < 1.005) break;
   }
   for (std::size_t i = 0; i < charts.size(); ++i) {
