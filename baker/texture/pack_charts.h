@@ -11,8 +11,9 @@
 // map's edges.
 //
 // The density is the largest a few rounds of packing find whose charts fit `size` texels down
-// (the width is the map's): each round scales it by the square root of the height it missed by,
-// until the charts fill at least 98 % of the map's height.
+// (the width is the map's): each round scales it by the square root of the height it missed by
+// (or, when a packing outgrows the map, of the share of texels it placed), then bisects, until
+// the charts fill at least 98 % of the map's height.
 // Deterministic.
 #pragma once
 
