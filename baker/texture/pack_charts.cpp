@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -16,6 +17,10 @@ namespace {
 using UV = std::array<double, 2>;
 
 constexpr int kRounds = 8;  // rounds of packing that search the density
+// A texel belongs to a chart's footprint where its centre lies within this many texels of one
+// of the chart's triangles: what the atlas's rasteriser (rasterize_uv.h) may claim once the uv
+// are rounded to float and snapped to 1/256 texel, with room to spare.
+constexpr double kCoverMargin = 1.0 / 64.0;
 
 double cross(const UV& o, const UV& a, const UV& b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
@@ -86,9 +91,32 @@ struct Run {
   int from = 0, to = 0;  // rows [from, to)
 };
 
+// Run lengths in classes, for the occupancy's lowest gap per class (Occupancy::lowest): every
+// length up to kExactLengths rows, then powers of two up to 2^15 rows. classLength(k) is the
+// shortest length of class k.
+constexpr int kExactLengths = 32, kLengthClasses = kExactLengths + 10;
+constexpr int classLength(int k) {
+  return k < kExactLengths ? k + 1 : kExactLengths << (k - kExactLengths + 1);
+}
+int lengthClass(int length) {
+  return length <= kExactLengths
+             ? length - 1
+             : std::min(kLengthClasses - 1, kExactLengths - 1 + int(std::bit_width(unsigned(length))) - 6);
+}
+
 struct Footprint {
   int width = 0, height = 0;
   std::vector<std::vector<Run>> columns;
+  // The same runs in one array, column by column, and per column that has any, its longest run
+  // as the lower bound reads it: the drop's loops walk contiguous memory.
+  struct Probe {
+    int column, length_class, from;
+  };
+  struct Cell {
+    int column, from, to;
+  };
+  std::vector<Cell> cells;
+  std::vector<Probe> probes;
 };
 
 // Sorts runs and merges those that overlap or touch.
@@ -103,6 +131,19 @@ void mergeRuns(std::vector<Run>& runs) {
   runs.resize(n);
 }
 
+// Fills a footprint's flat arrays from its columns.
+void seal(Footprint& f) {
+  f.cells.clear(), f.probes.clear();
+  for (int i = 0; i < f.width; ++i) {
+    const auto& runs = f.columns[std::size_t(i)];
+    for (const Run& r : runs) f.cells.push_back({i, r.from, r.to});
+    if (runs.empty()) continue;
+    const Run longest = *std::max_element(runs.begin(), runs.end(),
+                                          [](const Run& a, const Run& b) { return a.to - a.from < b.to - b.from; });
+    f.probes.push_back({i, lengthClass(longest.to - longest.from), longest.from});
+  }
+}
+
 Footprint footprint(const PackChart& chart, const Placement& place, double density, int grow) {
   const int width = int(std::ceil(density * place.width)) + 1, height = int(std::ceil(density * place.height)) + 1;
   std::vector<std::vector<Run>> touched(static_cast<std::size_t>(width));
@@ -111,8 +152,9 @@ Footprint footprint(const PackChart& chart, const Placement& place, double densi
     const UV q = place.apply(chart.uv[i]);
     p[i] = {density * q[0], density * q[1]};
   }
-  // Conservative: a texel square meets the triangle where its centre lies in the triangle
-  // grown by the square (each edge pushed out by half the square's extent along its normal).
+  // A texel is the chart's where its centre lies in the triangle grown by kCoverMargin (each
+  // edge pushed out along its normal): the texels the atlas's rasteriser gives the chart, and
+  // no more, so gutters are `padding` texels of the map, not of conservative outlines.
   for (const auto& t : chart.triangles) {
     const UV &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
     const int x0 = std::max(0, int(std::floor(std::min({a[0], b[0], c[0]})))),
@@ -125,7 +167,7 @@ Footprint footprint(const PackChart& chart, const Placement& place, double densi
     for (int k = 0; k < 3; ++k) {
       const UV &s = *v[k], &e = *v[(k + 1) % 3];
       nx[k] = -sign * (e[1] - s[1]), ny[k] = sign * (e[0] - s[0]);  // inward
-      off[k] = 0.5 * (std::abs(nx[k]) + std::abs(ny[k])) - (nx[k] * s[0] + ny[k] * s[1]);
+      off[k] = kCoverMargin * std::hypot(nx[k], ny[k]) - (nx[k] * s[0] + ny[k] * s[1]);
     }
     const auto inside = [&](int x, int y) {
       for (int k = 0; k < 3; ++k)
@@ -151,6 +193,7 @@ Footprint footprint(const PackChart& chart, const Placement& place, double densi
       for (const Run& r : touched[std::size_t(x)]) f.columns[std::size_t(x + d)].push_back({r.from, r.to + 2 * grow});
   }
   for (auto& runs : f.columns) mergeRuns(runs);
+  seal(f);
   return f;
 }
 
@@ -163,6 +206,7 @@ Footprint halfTurn(const Footprint& f) {
     to.clear();
     for (auto run = from.rbegin(); run != from.rend(); ++run) to.push_back({f.height - run->to, f.height - run->from});
   }
+  seal(r);
   return r;
 }
 
@@ -170,104 +214,156 @@ struct Spot {
   int x = 0, y = 0, turn = 0;
 };
 
-// The texels packed so far, per column a bitset of rows (1: taken by a grown footprint), rows
-// 0 … 4 · size − 1: packings taller than the map are measured too, to rescale the density.
+// The texels packed so far, kept twice: per column a bit per row (1: taken by a grown
+// footprint), to test a run's rows in a word or two, and per column its free gaps (rows
+// [from, to), ascending), to lift a run past every gap too short for it in one step. Per column
+// and length class, the lowest gap of at least that class's length: no run of that length sits
+// lower. Rows 0 … 4 · size − 1: packings taller than the map are measured too, to rescale the
+// density.
 class Occupancy {
  public:
   Occupancy(int columns, int rows)
-      : words_((rows + 63) / 64),
-        rows_(rows),
+      : rows_(rows),
+        words_(std::size_t(rows + 63) / 64),
         bits_(std::size_t(columns) * words_, 0),
-        floor_(std::size_t(columns), 0) {}
+        gaps_(std::size_t(columns), std::vector<Run>{{0, rows}}),
+        lowest_(std::size_t(columns) * kLengthClasses, 0) {}
 
   int rows() const { return rows_; }
-  // Column x's lowest free row: no texel of a footprint there can sit lower.
-  int floor(int x) const { return floor_[std::size_t(x)]; }
 
-  // The first taken row of column x in [from, to), or −1.
-  int firstTaken(int x, int from, int to) const {
+  // Column x's lowest gap of a length class (lengthClass).
+  int lowest(int x, int length_class) const {
+    return lowest_[std::size_t(x) * kLengthClasses + std::size_t(length_class)];
+  }
+
+  // Whether any of rows [from, to) of column x is taken (0 ≤ from < to ≤ rows()).
+  bool blocked(int x, int from, int to) const {
     const std::uint64_t* col = &bits_[std::size_t(x) * words_];
-    for (int w = from >> 6; w << 6 < to; ++w) {
-      std::uint64_t bits = col[w];
-      if (w == from >> 6) bits &= ~std::uint64_t(0) << (from & 63);
-      if (bits == 0) continue;
-      const int r = (w << 6) + std::countr_zero(bits);
-      return r < to ? r : -1;
+    const int first = from >> 6, last = (to - 1) >> 6;
+    const std::uint64_t low = ~std::uint64_t(0) << (from & 63), high = ~std::uint64_t(0) >> (63 - ((to - 1) & 63));
+    if (first == last) return (col[first] & low & high) != 0;
+    if (col[first] & low) return true;
+    for (int w = first + 1; w < last; ++w)
+      if (col[w]) return true;
+    return (col[last] & high) != 0;
+  }
+
+  // The lowest row t ≥ from where rows [t, t + length) of column x are free, or −1 when there
+  // is none at or below `limit`. `gaps_passed` counts the gaps looked at above `from`'s.
+  int fit(int x, int from, int length, int limit, std::uint64_t& gaps_passed) const {
+    const std::vector<Run>& gaps = gaps_[std::size_t(x)];
+    auto g = std::upper_bound(gaps.begin(), gaps.end(), from, [](int row, const Run& r) { return row < r.from; });
+    if (g != gaps.begin() && std::prev(g)->to - from >= length) return from;  // the gap holding `from`
+    for (; g != gaps.end() && g->from <= limit; ++g) {
+      ++gaps_passed;
+      if (g->to - g->from >= length) return g->from;
     }
     return -1;
   }
 
-  // The first free row of column x at or above `from` (rows_ when there is none).
-  int firstFree(int x, int from) const {
-    const std::uint64_t* col = &bits_[std::size_t(x) * words_];
-    for (int w = from >> 6; w < int(words_); ++w) {
-      std::uint64_t bits = ~col[w];
-      if (w == from >> 6) bits &= ~std::uint64_t(0) << (from & 63);
-      if (bits != 0) return std::min(rows_, (w << 6) + std::countr_zero(bits));
-    }
-    return rows_;
-  }
-
+  // Takes rows [from, to) of column x, which must be free.
   void take(int x, int from, int to) {
     std::uint64_t* col = &bits_[std::size_t(x) * words_];
-    for (int r = from; r < to; ++r) col[r >> 6] |= std::uint64_t(1) << (r & 63);
-    floor_[std::size_t(x)] = firstFree(x, floor_[std::size_t(x)]);
+    for (int r = from; r < to;) {
+      const int end = std::min(to, (r | 63) + 1), n = end - r;
+      col[r >> 6] |= (n == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << n) - 1) << (r & 63);
+      r = end;
+    }
+    std::vector<Run>& gaps = gaps_[std::size_t(x)];
+    const auto g =
+        std::prev(std::upper_bound(gaps.begin(), gaps.end(), from, [](int row, const Run& r) { return row < r.from; }));
+    const Run was = *g;
+    const std::size_t at = std::size_t(g - gaps.begin());
+    if (was.from < from && to < was.to) {
+      g->to = from;
+      gaps.insert(g + 1, Run{to, was.to});
+    } else if (was.from < from) {
+      g->to = from;
+    } else if (to < was.to) {
+      g->from = to;
+    } else {
+      gaps.erase(g);
+    }
+    // Only the classes whose lowest gap was this one change: theirs is this one's remainder or
+    // a later gap. The last gap stands for any length (what does not fit there fits nowhere).
+    for (int k = 0; k < kLengthClasses; ++k) {
+      int& lowest = lowest_[std::size_t(x) * kLengthClasses + std::size_t(k)];
+      if (lowest != was.from) continue;
+      std::size_t i = at;
+      while (i < gaps.size() && gaps[i].to - gaps[i].from < classLength(k) && gaps[i].to < rows_) ++i;
+      lowest = i < gaps.size() ? gaps[i].from : rows_;
+    }
   }
 
  private:
-  std::size_t words_;
   int rows_;
+  std::size_t words_;
   std::vector<std::uint64_t> bits_;
-  std::vector<int> floor_;
+  std::vector<std::vector<Run>> gaps_;
+  std::vector<int> lowest_;  // column-major: a drop reads neighbouring columns
 };
 
-// The lowest row at which a footprint with its first column at x meets no taken texel (below
-// the packing's top, into any hole large enough, as well as on it), or nothing when that is
-// higher than `above` (the best found so far) or than the rows held. Each taken texel in the
-// way lifts the footprint to just past the run it belongs to, until none is in the way.
-bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int above, int& y) {
-  y = 0;  // start where each column's lowest run meets that column's lowest free row
-  for (int i = 0; i < f.width; ++i)
-    if (!f.columns[std::size_t(i)].empty())
-      y = std::max(y, taken.floor(x + i) - f.columns[std::size_t(i)].front().from);
+// No row below this one lets a footprint with its first column at x meet no taken texel: each
+// column's longest run sits in a gap at least as long. Stops early once above `above`.
+int lowerBound(const Footprint& f, const Occupancy& taken, int x, int above) {
+  int y = 0;
+  for (const Footprint::Probe& p : f.probes) {
+    y = std::max(y, taken.lowest(x + p.column, p.length_class) - p.from);
+    if (y > above) break;
+  }
+  return y;
+}
+
+// The lowest row y ≥ `from` (a lower bound) at which a footprint with its first column at x
+// meets no taken texel (in a hole beneath earlier charts as well as on top of them), or
+// nothing when that is higher than `above` (the best found so far) or than the rows held. The
+// runs are tested in turn, round and round; one that meets a taken texel lifts the footprint to
+// the next gap long enough for it in its column, until every run in a row fits.
+bool lowestFree(const Footprint& f, const Occupancy& taken, int x, int from, int above, int& y, PackWork& work) {
+  y = from;
   if (y > above) return false;
-  for (bool lifted = true; lifted;) {
-    lifted = false;
-    for (int i = 0; i < f.width; ++i)
-      for (const Run& run : f.columns[std::size_t(i)]) {
-        if (y + run.to > taken.rows()) return false;
-        const int r = taken.firstTaken(x + i, y + run.from, y + run.to);
-        if (r < 0) continue;
-        y = taken.firstFree(x + i, r) - run.from;
-        if (y > above) return false;
-        lifted = true;
-      }
+  const std::size_t n = f.cells.size();
+  for (std::size_t r = 0, clean = 0; clean < n; r = r + 1 == n ? 0 : r + 1) {
+    const Footprint::Cell& c = f.cells[r];
+    if (!taken.blocked(x + c.column, y + c.from, y + c.to)) {
+      ++clean;
+      continue;
+    }
+    const int limit = above >= taken.rows() ? taken.rows() : above + c.from;
+    const int t = taken.fit(x + c.column, y + c.from, c.to - c.from, limit, work.gaps_passed);
+    ++work.lifts;
+    if (t < 0) return false;
+    y = t - c.from;
+    if (y > above) return false;
+    clean = 1;
   }
   return true;
 }
 
 // Every chart placed, biggest first, where it rests lowest in what is packed so far (holes
-// left beneath earlier charts included; ties: further left, then unturned): every kStride-th
-// column first, then each column near the best of those. Returns the packing's height, or more
-// than `size` when a chart is wider than the map or the packing outgrows the map (it stops
-// there: `placed` gives the share of the footprints' texels placed by then, 1 when all fit).
+// left beneath earlier charts included; ties: the first found, turn by turn, left to right):
+// every kStride-th column first, then each column near the best of those. Returns the
+// packing's height, or more than `size` when a chart is wider than the map or the packing
+// outgrows the map (it stops there: `placed` gives the share of the footprints' texels placed
+// by then, 1 when all fit).
 int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<std::size_t>& order, int size,
-         std::vector<Spot>& spots, double& placed) {
+         std::vector<Spot>& spots, double& placed, PackWork& work) {
   constexpr int kStride = 8;
   Occupancy taken(size, 4 * size);
   int height = 0;
   double placed_texels = 0, texels = 0;
   for (const auto& p : prints)
-    for (const auto& runs : p[0].columns)
-      for (const Run& run : runs) texels += run.to - run.from;
+    for (const Footprint::Cell& c : p[0].cells) texels += c.to - c.from;
   spots.assign(prints.size(), Spot{});
   for (std::size_t c : order) {
     int best_y = std::numeric_limits<int>::max();
     Spot best{-1, 0, 0};
     const auto consider = [&](int turn, int x) {
+      const Footprint& f = prints[c][std::size_t(turn)];
+      ++work.positions;
+      const int bound = lowerBound(f, taken, x, best_y - 1);
       int y = 0;
-      if (!lowestFree(prints[c][std::size_t(turn)], taken, x, best_y - 1, y)) return;
-      best_y = y, best = {x, y, turn};
+      if (bound < best_y && lowestFree(f, taken, x, bound, best_y - 1, y, work)) best_y = y, best = {x, y, turn};
     };
     for (int turn = 0; turn < 4; ++turn) {
       const int last = size - prints[c][std::size_t(turn)].width;
@@ -275,7 +371,7 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
       if (last >= 0 && last % kStride != 0) consider(turn, last);
     }
     if (best.x < 0) {
-      placed = 0;  // wider than the map: shrink as far as a round may
+      placed = 0;  // wider than the map, or taller than the rows held: shrink as far as a round may
       return std::numeric_limits<int>::max();
     }
     const Spot coarse = best;
@@ -283,14 +379,13 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
     for (int x = std::max(0, coarse.x - kStride + 1); x <= std::min(last, coarse.x + kStride - 1); ++x)
       if (x != coarse.x) consider(coarse.turn, x);
     const Footprint& f = prints[c][std::size_t(best.turn)];
-    for (int i = 0; i < f.width; ++i)
-      for (const Run& run : f.columns[std::size_t(i)]) {
-        taken.take(best.x + i, best.y + run.from, best.y + run.to);
-        height = std::max(height, best.y + run.to);
-      }
+    for (const Footprint::Cell& cell : f.cells) {
+      taken.take(best.x + cell.column, best.y + cell.from, best.y + cell.to);
+      height = std::max(height, best.y + cell.to);
+      placed_texels += cell.to - cell.from;
+    }
     spots[c] = best;
-    for (const auto& runs : f.columns)
-      for (const Run& run : runs) placed_texels += run.to - run.from;
+    ++work.charts;
     if (height > size) break;
   }
   placed = texels > 0 ? placed_texels / texels : 1.0;
@@ -299,7 +394,18 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
 
 }  // namespace
 
-double packCharts(std::vector<PackChart>& charts, int size, int padding) {
+double convexHullArea(const std::vector<UV>& points) {
+  const std::vector<UV> hull = convexHull(points);
+  double twice = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const UV &a = hull[i], &b = hull[(i + 1) % hull.size()];
+    twice += a[0] * b[1] - a[1] * b[0];
+  }
+  return 0.5 * std::abs(twice);
+}
+
+double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWork* counts) {
+  PackWork work;
   if (charts.empty()) return 0.0;
   const int grow = (padding + 1) / 2;  // two grown footprints apart: 2 · grow + 1 > padding texels between charts
   std::vector<Placement> place(charts.size());
@@ -318,6 +424,7 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
   // Start where the charts would cover 60 % of the map, rescale by the height missed until
   // one density fits and one does not, then bisect between them.
   double density = area > 0 ? size * std::sqrt(0.6 / area) : 1.0, fits = 0, fails = 0;
+  int fits_height = 0;
   std::vector<Spot> spots, best_spots;
   std::vector<std::array<Footprint, 4>> prints(charts.size()), best_prints;
   for (int round = 0; round < kRounds || fits == 0; ++round) {
@@ -332,17 +439,19 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
       prints[i][3] = halfTurn(prints[i][2]);
     });
     double placed = 1;
-    const int height = drop(prints, order, size, spots, placed);
+    const int height = drop(prints, order, size, spots, placed, work);
     if (height <= size) {
       fits = density;
+      fits_height = height;
       best_spots = spots;
       best_prints = prints;
       if (height >= 0.98 * size) break;  // within 1 % of the density that fills the map
     } else {
       fails = density;
     }
-    if (fits > 0 && fails > 0)
-      density = std::sqrt(fits * fails);
+    if (fits > 0 && fails > 0)  // where the last fit's height says 99 % of the map is, if that is nearer than halfway
+      density =
+          std::clamp(fits * std::sqrt(0.99 * size / std::max(fits_height, 1)), fits * 1.001, std::sqrt(fits * fails));
     else  // heights, and the texels a packing too tall for the map placed, go with its square
       density *= std::sqrt(height <= size ? std::min(double(size) / std::max(height, 1), 4.0)
                                           : std::clamp(std::min(placed, double(size) / height), 0.25, 0.9));
@@ -360,6 +469,7 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding) {
       q = {(s.x + at[0]) / size, 1.0 - (s.y + at[1]) / size};
     }
   }
+  if (counts) *counts = work;
   return fits;
 }
 
