@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "core/edge_table.h"
 #include "core/vec3.h"
@@ -177,7 +178,9 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
                                 "-texel gutters is outside 1 … 8192 texels and 0 … 64 texels");
   const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
   std::array<std::vector<FlatChart>, 2> flat;
-  for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
+  // The surfaces are independent: each one's serial steps (segmentation, merging) overlap the other's.
+  tbb::parallel_invoke([&] { flat[0] = flattenSurface(*surfaces[0], 0); },
+                       [&] { flat[1] = flattenSurface(*surfaces[1], 1); });
 
   std::vector<PackChart> packed;
   for (auto& charts : flat)
