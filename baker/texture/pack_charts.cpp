@@ -7,7 +7,6 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -84,9 +83,7 @@ Placement orient(const std::vector<UV>& uv) {
   return best.height > best.width ? best.quarterTurn() : best;
 }
 
-// A chart's footprint at one density: per column of texels, the runs of rows its triangles touch
-// (ascending, apart), grown by `grow` texels each way (a chessboard dilation), with the chart
-// itself `grow` texels in from the footprint's lower corner.
+// Rows [from, to) of one column.
 struct Run {
   int from = 0, to = 0;  // rows [from, to)
 };
@@ -104,6 +101,9 @@ int lengthClass(int length) {
              : std::min(kLengthClasses - 1, kExactLengths - 1 + int(std::bit_width(unsigned(length))) - 6);
 }
 
+// A chart's footprint at one density: per column of texels, the runs of rows whose texel
+// centres its triangles cover (ascending, apart), grown by `grow` texels each way (a chessboard
+// dilation), with the chart itself `grow` texels in from the footprint's lower corner.
 struct Footprint {
   int width = 0, height = 0;
   std::vector<std::vector<Run>> columns;
