@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -48,7 +50,8 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
     }
     hull[c] = convexHullArea(charts[c].uv.uv);
   }
-  std::vector<std::uint32_t> order(charts.size());
+  std::vector<std::uint32_t> order(charts.size()), version(charts.size(), 0);
+  std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>> failed;
   for (std::uint32_t c = 0; c < order.size(); ++c) order[c] = c;
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] < area[b]; });
   for (std::uint32_t c : order) {
@@ -69,19 +72,26 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
     std::stable_sort(shared.begin(), shared.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     for (std::size_t i = 0; i < shared.size() && i < kMergeTries; ++i) {
       const std::uint32_t b = shared[i].second;
+      // A union tried before, of the same two charts unchanged since, would fail again.
+      const auto tried =
+          std::make_tuple(std::min(b, c), std::max(b, c), version[std::min(b, c)], version[std::max(b, c)]);
+      if (failed.count(tried)) continue;
       std::vector<std::uint32_t> both;
       std::merge(charts[c].triangles.begin(), charts[c].triangles.end(), charts[b].triangles.begin(),
                  charts[b].triangles.end(), std::back_inserter(both));
       ChartUv flat = parameterizeChart(mesh, both);
-      if (flat.status != ChartStatus::Ok) continue;
-      const double merged_hull = convexHullArea(flat.uv);
-      if (merged_hull > hull[c] + hull[b]) continue;
+      const double merged_hull = flat.status == ChartStatus::Ok ? convexHullArea(flat.uv) : 0.0;
+      if (flat.status != ChartStatus::Ok || merged_hull > hull[c] + hull[b]) {
+        failed.insert(tried);
+        continue;
+      }
       for (std::uint32_t t : charts[c].triangles) owner[t] = b;
       charts[b].triangles = std::move(both);
       charts[b].uv = std::move(flat);
       charts[c].triangles.clear();
       area[b] += area[c];
       hull[b] = merged_hull;
+      ++version[b];
       break;
     }
   }
