@@ -1,7 +1,7 @@
 // The texture stage on a real asset (docs/textures.md; figures in bench/README.md).
 //
 //   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--lod-size halved|full]
-//                          [--out DIR] [--dump] [--no-fidelity]
+//                          [--out DIR] [--dump] [--no-fidelity] [--atlas-only]
 //
 // Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
 // stage (bakeMeshes, which hands over the bake source: the refined surface before
@@ -14,6 +14,8 @@
 // normal and the LOD's, geometry alone and decoded from the written PNGs by glTF's rules in
 // this file's own code, and the base colour map's mean absolute difference (linear) from
 // LOD0's vertex colours. --dump writes each LOD's atlas, charts in colours, into DIR/<rule>.
+// --atlas-only builds each LOD's UV atlas alone, at the map size the rule gives it, and reports
+// its charts, the segmentation's and the whole atlas's seconds, and the UV targets.
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -46,6 +48,7 @@
 
 #include "texture/rasterize_uv.h"
 #include "texture/ray_source.h"
+#include "texture/segment_charts.h"
 #include "texture/texture_files.h"
 #include "texture/texture_set.h"
 #include "texture/trace_texels.h"
@@ -319,6 +322,35 @@ std::string readAll(const std::filesystem::path& file) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+// Each LOD's atlas alone (--atlas-only): charts, seconds (segmentation, then the whole atlas
+// with it), the UV targets.
+void atlasOnly(const Asset& asset, const TextureParams& params, const std::filesystem::path& out, bool dump) {
+  for (std::size_t k = 0; k < asset.lods.size(); ++k) {
+    const int size = lodMapSize(params, int(k));
+    Stopwatch clock;
+    std::size_t charts = 0;
+    for (const SurfaceMesh* m : {&asset.lods[k].rock, &asset.lods[k].colluvium}) {
+      const std::vector<std::uint32_t> chart = segmentCharts(*m);
+      if (!chart.empty()) charts += *std::max_element(chart.begin(), chart.end()) + 1;
+    }
+    const double segmentation = clock.lap();
+    const double cpu0 = cpuSeconds();
+    const UvAtlas atlas = buildUvAtlas(asset.lods[k], size, params.padding);
+    const double whole = clock.lap(), cpu = cpuSeconds() - cpu0;
+    const TexelMap texels = rasterizeUv(atlas.meshes, size);
+    const UvFigures f = uvFigures(atlas, texels);
+    std::printf(
+        "LOD%zu at %d: %zu segments, %zu charts; segmentation %.3f s, atlas %.3f s (CPU %.3f s); contested %.3f %%, "
+        "use %.1f %%, within 2x of median density %.1f %%\n",
+        k, size, charts, atlas.charts, segmentation, whole, cpu, 100 * f.contested, 100 * f.use,
+        100 * f.within_twice_median);
+    if (dump) {
+      std::filesystem::create_directories(out);
+      dumpAtlas(atlas, texels, out / ("atlas_lod" + std::to_string(k) + ".png"));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rockbake
 
@@ -332,6 +364,7 @@ int main(int argc, char** argv) {
   std::vector<int> thread_counts{1, 2};
   std::vector<std::string> rules{"halved", "full"};
   bool fidelity_figures = true;
+  bool atlas_only = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -347,6 +380,8 @@ int main(int argc, char** argv) {
       thread_counts = {std::stoi(next())};
     else if (a == "--no-fidelity")
       fidelity_figures = false;
+    else if (a == "--atlas-only")
+      atlas_only = true;
     else if (a == "--lod-size")
       rules = {next()};
     else
@@ -367,6 +402,17 @@ int main(int argc, char** argv) {
       }()
           .c_str(),
       clock.lap());
+  if (atlas_only) {
+    for (const std::string& rule : rules) {
+      std::printf("\n== lod_size: %s ==\n", rule.c_str());
+      TextureParams params;
+      params.size = size;
+      params.lod_size = rule == "full" ? LodMapSize::Full : LodMapSize::Halved;
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(thread_counts.back()));
+      atlasOnly(asset, params, out / rule, dump);
+    }
+    return 0;
+  }
   const double bake_peak = statusMiB("VmHWM");
   {
     malloc_trim(0);

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "core/edge_table.h"
 #include "core/vec3.h"
@@ -23,6 +27,77 @@ struct FlatChart {
   std::vector<std::uint32_t> triangles;  // ascending
   ChartUv uv;
 };
+
+// Merges flattened charts into a neighbour where the union still flattens (parameterizeChart
+// accepts it) and packs no worse: its convex hull in the plane is no larger than the two
+// charts' hulls together. The border they shared stops costing gutter texels on both sides,
+// and the halves of a chart split because it failed come back together where they can.
+// Smallest chart first, each tried against the kMergeTries neighbours it shares the longest
+// border with (docs/textures.md §1).
+void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts) {
+  constexpr std::size_t kMergeTries = 2;
+  constexpr std::uint32_t kNoChart = 0xffffffffu;
+  if (charts.size() < 2) return;
+  std::vector<std::uint32_t> owner(mesh.triangles.size(), kNoChart);
+  std::vector<double> area(charts.size(), 0.0), hull(charts.size(), 0.0);
+  for (std::uint32_t c = 0; c < charts.size(); ++c) {
+    for (std::uint32_t t : charts[c].triangles) {
+      const auto& tri = mesh.triangles[t];
+      const Vec3d a = toVec3d(mesh.positions[tri[0]]), b = toVec3d(mesh.positions[tri[1]]),
+                  d = toVec3d(mesh.positions[tri[2]]);
+      owner[t] = c;
+      area[c] += 0.5 * length(cross(sub(b, a), sub(d, a)));
+    }
+    hull[c] = convexHullArea(charts[c].uv.uv);
+  }
+  std::vector<std::uint32_t> order(charts.size()), version(charts.size(), 0);
+  std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>> failed;
+  for (std::uint32_t c = 0; c < order.size(); ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] < area[b]; });
+  for (std::uint32_t c : order) {
+    if (charts[c].triangles.empty()) continue;
+    std::vector<std::pair<double, std::uint32_t>> shared;  // (border length, neighbour)
+    for (std::uint32_t t : charts[c].triangles)
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t u = edges.faceAcross(3 * t + k);
+        if (u == EdgeTable::kNone || owner[u] == c || owner[u] == kNoChart) continue;
+        const auto& tri = mesh.triangles[t];
+        const double l = length(sub(toVec3d(mesh.positions[tri[(k + 1) % 3]]), toVec3d(mesh.positions[tri[k]])));
+        const auto it = std::find_if(shared.begin(), shared.end(), [&](const auto& p) { return p.second == owner[u]; });
+        if (it == shared.end())
+          shared.push_back({l, owner[u]});
+        else
+          it->first += l;
+      }
+    std::stable_sort(shared.begin(), shared.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (std::size_t i = 0; i < shared.size() && i < kMergeTries; ++i) {
+      const std::uint32_t b = shared[i].second;
+      // A union tried before, of the same two charts unchanged since, would fail again.
+      const auto tried =
+          std::make_tuple(std::min(b, c), std::max(b, c), version[std::min(b, c)], version[std::max(b, c)]);
+      if (failed.count(tried)) continue;
+      std::vector<std::uint32_t> both;
+      std::merge(charts[c].triangles.begin(), charts[c].triangles.end(), charts[b].triangles.begin(),
+                 charts[b].triangles.end(), std::back_inserter(both));
+      ChartUv flat = parameterizeChart(mesh, both);
+      const double merged_hull = flat.status == ChartStatus::Ok ? convexHullArea(flat.uv) : 0.0;
+      if (flat.status != ChartStatus::Ok || merged_hull > hull[c] + hull[b]) {
+        failed.insert(tried);
+        continue;
+      }
+      for (std::uint32_t t : charts[c].triangles) owner[t] = b;
+      charts[b].triangles = std::move(both);
+      charts[b].uv = std::move(flat);
+      charts[c].triangles.clear();
+      area[b] += area[c];
+      hull[b] = merged_hull;
+      ++version[b];
+      break;
+    }
+  }
+  charts.erase(std::remove_if(charts.begin(), charts.end(), [](const FlatChart& c) { return c.triangles.empty(); }),
+               charts.end());
+}
 
 // Segments and flattens one surface; failing charts are split and flattened again, round by
 // round (each round in parallel, results in chart order).
@@ -53,6 +128,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
     }
     pending = std::move(again);
   }
+  mergeCharts(mesh, edges, done);
   // Charts in order of their lowest triangle, whatever round finished them.
   std::sort(done.begin(), done.end(),
             [](const FlatChart& a, const FlatChart& b) { return a.triangles.front() < b.triangles.front(); });
@@ -112,7 +188,9 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
                                 "-texel gutters is outside 1 … 8192 texels and 0 … 64 texels");
   const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
   std::array<std::vector<FlatChart>, 2> flat;
-  for (int s = 0; s < 2; ++s) flat[s] = flattenSurface(*surfaces[s], s);
+  // The surfaces are independent: each one's serial steps (segmentation, merging) overlap the other's.
+  tbb::parallel_invoke([&] { flat[0] = flattenSurface(*surfaces[0], 0); },
+                       [&] { flat[1] = flattenSurface(*surfaces[1], 1); });
 
   std::vector<PackChart> packed;
   for (auto& charts : flat)

@@ -494,8 +494,9 @@ TEST(TextureSet, HalvedSizesNameEveryLodsMapsAndRefuseBadParams) {
                                       "s_BaseColor_LOD2.png@256", "s_Normal_LOD2.png@256", "s_ORM_LOD2.png@256"}));
   EXPECT_EQ(set.sizes, (std::vector<int>{512, 256, 256}));
   EXPECT_EQ(readPngHeader(dir.path() / "textures" / "s_ORM_LOD1.png").width, 256u);
-  // The same LOD at half the map size: half the texels per world unit, within the packer's rounding.
-  EXPECT_NEAR(set.texels_per_unit[1] / set.texels_per_unit[0], 0.5, 0.05);
+  // The same LOD at half the map size: about half the texels per world unit (the gutters keep
+  // their width in texels, and how well a few charts pack varies with the map's size).
+  EXPECT_NEAR(set.texels_per_unit[1] / set.texels_per_unit[0], 0.5, 0.1);
   ASSERT_NE(findTextureFile(set, 2, TextureMap::Orm), nullptr);
   EXPECT_EQ(findTextureFile(set, 2, TextureMap::Orm)->file, "s_ORM_LOD2.png");
   EXPECT_EQ(findTextureFile(set, 0, TextureMap::Height), nullptr);

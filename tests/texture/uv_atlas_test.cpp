@@ -7,8 +7,10 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/edge_table.h"
 #include "texture/dilate_texels.h"
 #include "texture/rasterize_uv.h"
+#include "texture/segment_charts.h"
 #include "texture/uv_atlas.h"
 #include "texture_fixtures.h"
 
@@ -147,6 +149,45 @@ TEST(UvAtlas, WeatheredRockBothSurfaces) {
   EXPECT_GE(check.within_twice_median, 0.9);
   std::printf("weathered rock: %zu charts, %.1f %% of the map covered, %.1f %% of the surface within 2x\n",
               atlas.charts, 100.0 * double(check.covered) / (1024.0 * 1024.0), 100 * check.within_twice_median);
+}
+
+// Edges of `mesh` whose two triangles lie in different charts (`chart`: one per triangle).
+std::size_t borderEdges(const SurfaceMesh& mesh, const std::vector<std::uint32_t>& chart, std::size_t offset = 0) {
+  const EdgeTable edges(mesh.triangles);
+  std::size_t border = 0;
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t u = edges.faceAcross(3 * t + k);
+      if (u != EdgeTable::kNone && u > t && chart[offset + t] != chart[offset + u]) ++border;
+    }
+  return border;
+}
+
+TEST(UvAtlas, FlattenedChartsMergeWhereTheUnionStillFlattensAndPacks) {
+  // The segmentation's charts are split where they fail to flatten, and neighbours whose union
+  // flattens with a hull no larger than theirs together are merged: on a weathered rock the
+  // atlas ends with fewer charts and a shorter border (fewer seam edges, so fewer gutter
+  // texels) than the segmentation drew. Flattening alone, with splits and no merges, can only
+  // add charts and seams.
+  const AssetMeshes& rock = test::weatheredRock().meshes;
+  std::size_t segments = 0, segment_border = 0;
+  for (const SurfaceMesh* m : {&rock.rock, &rock.colluvium}) {
+    const std::vector<std::uint32_t> chart = segmentCharts(*m);
+    if (!chart.empty()) segments += *std::max_element(chart.begin(), chart.end()) + 1;
+    segment_border += borderEdges(*m, chart);
+  }
+  const UvAtlas atlas = buildUvAtlas(rock, 1024, 8);
+  const std::vector<std::uint32_t> chart = chartOfTriangles(atlas.meshes);
+  const std::size_t atlas_border =
+      borderEdges(rock.rock, chart) + borderEdges(rock.colluvium, chart, rock.rock.triangles.size());
+  std::printf("segmentation: %zu charts, %zu border edges; atlas: %zu charts, %zu border edges\n", segments,
+              segment_border, atlas.charts, atlas_border);
+  EXPECT_LT(atlas.charts, segments);
+  EXPECT_LT(atlas_border, segment_border);
+  const AtlasCheck check = checkAtlas(atlas, atlasParams(1024, 8));
+  EXPECT_EQ(check.contested, 0u);
+  EXPECT_EQ(check.too_close, 0u);
+  EXPECT_GE(check.within_twice_median, 0.9);
 }
 
 TEST(UvAtlas, TorusAndArchWithThroughHoles) {
