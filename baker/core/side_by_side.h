@@ -1,5 +1,5 @@
-// Two independent jobs run side by side on TBB's workers; returns when both
-// have finished.
+// Independent jobs run side by side on TBB's workers; returns when all have
+// finished.
 //
 // Why not tbb::parallel_invoke alone: there, an exception in one job (a
 // std::bad_alloc, say) cancels the other's nested parallel loops, which then
@@ -9,10 +9,15 @@
 // sees does not depend on timing.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 
 namespace rockbake {
 
 void sideBySide(const std::function<void()>& first, const std::function<void()>& second);
+
+// job(0) … job(count - 1) side by side, each run to its end; the exception of
+// the lowest-numbered job that threw, if any, is rethrown.
+void allSideBySide(std::size_t count, const std::function<void(std::size_t)>& job);
 
 }  // namespace rockbake

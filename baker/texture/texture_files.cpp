@@ -5,10 +5,12 @@
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
+#include <ImfThreading.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <mutex>
 #include <ostream>
 #include <stdexcept>
 
@@ -20,6 +22,15 @@
 
 namespace rockbake {
 namespace {
+
+// OpenEXR compresses a file's blocks on its global thread pool, which has no
+// threads until it is given some: without them the ZIP runs on the writing
+// thread alone. The pool only grows, up to the bake's own thread count.
+void compressOnThreads(int threads) {
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
+}
 
 template <class T>
 void writePng(const std::filesystem::path& file, const TextureImage<T>& image, bool srgb) {
@@ -150,7 +161,9 @@ void writeTextureExr(const std::filesystem::path& file, int size, int band_rows,
       header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
       header.compression() = Imf::ZIP_COMPRESSION;
       Stream stream(out, file.string());
-      Imf::OutputFile exr(stream, header, std::max(1, tbb::this_task_arena::max_concurrency()));
+      const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
+      compressOnThreads(threads);
+      Imf::OutputFile exr(stream, header, threads);
       // Each band's slice is addressed as OpenEXR does a region's: its base pointer is where
       // row 0 would be, and OpenEXR reads only the rows written (y from first onwards).
       for (int first = 0; first < size; first += rows) {

@@ -6,6 +6,7 @@
 #endif
 #include <stdexcept>
 
+#include "core/side_by_side.h"
 #include "core/stopwatch.h"
 #include "texture/ambient_occlusion.h"
 #include "texture/bake_maps.h"
@@ -49,12 +50,18 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   const RockLook look(request.seed, rays.radius(), request.voxel_size, source.durability_range, request.varied);
   const double cage = params.cage > 0 ? params.cage : 0.1 * rays.radius();
 
+  // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
+  // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
+  std::vector<UvAtlas> atlases(lods.size());
+  allSideBySide(lods.size(),
+                [&](std::size_t k) { atlases[k] = buildUvAtlas(lods[k], lodMapSize(params, int(k)), params.padding); });
+  releaseFreedHeap();
+  step("atlases");
+
   for (std::size_t k = 0; k < lods.size(); ++k) {
     const std::string lod = "lod" + std::to_string(k);
     const int size = lodMapSize(params, int(k));
-    UvAtlas atlas = buildUvAtlas(lods[k], size, params.padding);
-    releaseFreedHeap();
-    step(lod + " atlas");
+    UvAtlas& atlas = atlases[k];
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
     step(lod + " tangents");

@@ -7,7 +7,9 @@
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
+#include <string>
 #include <thread>
+#include <vector>
 
 namespace rockbake {
 namespace {
@@ -62,6 +64,22 @@ TEST(SideBySide, BothJobsRunToTheirEnd) {
   int a = 0, b = 0;
   sideBySide([&] { a = 1; }, [&] { b = 2; });
   EXPECT_EQ(a + b, 3);
+}
+
+TEST(AllSideBySide, EveryJobRunsAndTheLowestNumberedExceptionComesOut) {
+  for (int round = 0; round < 20; ++round) {
+    std::vector<std::atomic<int>> ran(16);
+    try {
+      allSideBySide(ran.size(), [&](std::size_t i) {
+        ++ran[i];
+        if (i == 5 || i == 11) throw std::runtime_error(std::to_string(i));
+      });
+      FAIL() << "no exception came out";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "5");
+    }
+    for (const auto& r : ran) EXPECT_EQ(r.load(), 1);
+  }
 }
 
 }  // namespace
