@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -51,11 +52,15 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
     hull[c] = convexHullArea(charts[c].uv.uv);
   }
   std::vector<std::uint32_t> order(charts.size()), version(charts.size(), 0);
-  std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>> failed;
+  using Union = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;  // (a, b, a's and b's versions)
+  const auto unionOf = [&](std::uint32_t a, std::uint32_t b) {
+    return a < b ? Union{a, b, version[a], version[b]} : Union{b, a, version[b], version[a]};
+  };
+  std::set<Union> failed;
   for (std::uint32_t c = 0; c < order.size(); ++c) order[c] = c;
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] < area[b]; });
-  for (std::uint32_t c : order) {
-    if (charts[c].triangles.empty()) continue;
+  // The neighbours chart c tries, longest shared border first.
+  const auto neighbours = [&](std::uint32_t c) {
     std::vector<std::pair<double, std::uint32_t>> shared;  // (border length, neighbour)
     for (std::uint32_t t : charts[c].triangles)
       for (std::uint32_t k = 0; k < 3; ++k) {
@@ -70,16 +75,49 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
           it->first += l;
       }
     std::stable_sort(shared.begin(), shared.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (std::size_t i = 0; i < shared.size() && i < kMergeTries; ++i) {
-      const std::uint32_t b = shared[i].second;
+    std::vector<std::uint32_t> tries;
+    for (std::size_t i = 0; i < shared.size() && i < kMergeTries; ++i) tries.push_back(shared[i].second);
+    return tries;
+  };
+  const auto flattenUnion = [&](std::uint32_t a, std::uint32_t b) {
+    std::vector<std::uint32_t> both;
+    std::merge(charts[a].triangles.begin(), charts[a].triangles.end(), charts[b].triangles.begin(),
+               charts[b].triangles.end(), std::back_inserter(both));
+    return std::make_pair(std::move(both), parameterizeChart(mesh, both));
+  };
+  // The tries are made in order, one after another, since each merge changes what later charts
+  // meet. Their flattenings (nearly all the time) are made ahead, side by side, for the next
+  // kAhead charts as things stand; a union's flattening depends on its two charts' triangles
+  // alone, named by the charts and their versions, so one made ahead is used only while both are
+  // unchanged, and is then exactly what the try would make. The result does not depend on the
+  // thread count.
+  constexpr std::size_t kAhead = 32;
+  std::map<Union, std::pair<std::vector<std::uint32_t>, ChartUv>> ahead;
+  for (std::size_t at = 0; at < order.size(); ++at) {
+    if (at % kAhead == 0) {
+      std::vector<Union> unions;
+      for (std::size_t k = at; k < std::min(order.size(), at + kAhead); ++k) {
+        const std::uint32_t c = order[k];
+        if (charts[c].triangles.empty()) continue;
+        for (std::uint32_t b : neighbours(c))
+          if (const Union u = unionOf(c, b);
+              !failed.count(u) && std::find(unions.begin(), unions.end(), u) == unions.end())
+            unions.push_back(u);
+      }
+      std::vector<std::pair<std::vector<std::uint32_t>, ChartUv>> made(unions.size());
+      tbb::parallel_for(std::size_t(0), unions.size(),
+                        [&](std::size_t i) { made[i] = flattenUnion(std::get<0>(unions[i]), std::get<1>(unions[i])); });
+      ahead.clear();
+      for (std::size_t i = 0; i < unions.size(); ++i) ahead.emplace(unions[i], std::move(made[i]));
+    }
+    const std::uint32_t c = order[at];
+    if (charts[c].triangles.empty()) continue;
+    for (const std::uint32_t b : neighbours(c)) {
       // A union tried before, of the same two charts unchanged since, would fail again.
-      const auto tried =
-          std::make_tuple(std::min(b, c), std::max(b, c), version[std::min(b, c)], version[std::max(b, c)]);
+      const Union tried = unionOf(c, b);
       if (failed.count(tried)) continue;
-      std::vector<std::uint32_t> both;
-      std::merge(charts[c].triangles.begin(), charts[c].triangles.end(), charts[b].triangles.begin(),
-                 charts[b].triangles.end(), std::back_inserter(both));
-      ChartUv flat = parameterizeChart(mesh, both);
+      const auto made = ahead.find(tried);
+      auto [both, flat] = made != ahead.end() ? std::move(made->second) : flattenUnion(c, b);
       const double merged_hull = flat.status == ChartStatus::Ok ? convexHullArea(flat.uv) : 0.0;
       if (flat.status != ChartStatus::Ok || merged_hull > hull[c] + hull[b]) {
         failed.insert(tried);
