@@ -86,8 +86,8 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
     return std::make_pair(std::move(both), parameterizeChart(mesh, both));
   };
   // The tries are made in order, one after another, since each merge changes what later charts
-  // meet. Their flattenings (nearly all the time) are made ahead, side by side, for the next
-  // kAhead charts as things stand; a union's flattening depends on its two charts' triangles
+  // meet. Their flattenings, nearly all of a try's time, are made ahead, side by side, for the
+  // next kAhead charts as things stand; a union's flattening depends on its two charts' triangles
   // alone, named by the charts and their versions, so one made ahead is used only while both are
   // unchanged, and is then exactly what the try would make. The result does not depend on the
   // thread count.
