@@ -1,6 +1,7 @@
 #include "texture/texture_set.h"
 
 #include <ctime>
+#include <memory>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -45,10 +46,11 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     set.steps.push_back({name, clock.lap(), double(now - cpu) / CLOCKS_PER_SEC});
     cpu = now;
   };
-  const RaySource rays(source);
+  auto rays = std::make_unique<RaySource>(source);
   step("ray scene");
-  const RockLook look(request.seed, rays.radius(), request.voxel_size, source.durability_range, request.varied);
-  const double cage = params.cage > 0 ? params.cage : 0.1 * rays.radius();
+  const double radius = rays->radius();
+  const RockLook look(request.seed, radius, request.voxel_size, source.durability_range, request.varied);
+  const double cage = params.cage > 0 ? params.cage : 0.1 * radius;
 
   // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
   // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
@@ -58,7 +60,13 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   releaseFreedHeap();
   step("atlases");
 
-  for (std::size_t k = 0; k < lods.size(); ++k) {
+  // LOD0 last: its rays are the last the ray scene serves, so the scene is gone before its
+  // maps, the largest, are made (docs/textures.md §11). The files are listed LOD by LOD.
+  std::vector<std::vector<TextureFile>> files(lods.size());
+  std::vector<std::size_t> order;
+  for (std::size_t k = 1; k < lods.size(); ++k) order.push_back(k);
+  if (!lods.empty()) order.push_back(0);
+  for (const std::size_t k : order) {
     const std::string lod = "lod" + std::to_string(k);
     const int size = lodMapSize(params, int(k));
     UvAtlas& atlas = atlases[k];
@@ -67,20 +75,21 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     step(lod + " tangents");
     TexelMap texels = rasterizeUv(atlas.meshes, size);
     dilateTexels(texels);
-    const TexelHits hits = traceTexels(atlas.meshes, texels, rays, cage);
+    const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
     set.missed += hits.missed;
     step(lod + " rays");
 
     const LodBake bake{&atlas.meshes, &texels, &hits, &source};
     std::array<std::vector<float>, 2> occlusion;
     if (wantsMap(params, TextureMap::Orm)) {
-      occlusion = vertexOcclusion(atlas.meshes, rays, params, request.seed);
+      occlusion = vertexOcclusion(atlas.meshes, *rays, params, request.seed);
       step(lod + " occlusion");
     }
+    if (k == 0) rays.reset();
     const auto record = [&](TextureMap map, int channels, int bits, const char* space) {
       const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
-      set.files.push_back({textureFileName(request.name, map, suffix), map, int(k), size, channels, bits, space});
-      return request.folder / set.files.back().file;
+      files[k].push_back({textureFileName(request.name, map, suffix), map, int(k), size, channels, bits, space});
+      return request.folder / files[k].back().file;
     };
     // Each map is made, then written and freed, before the next: one map in memory at a time,
     // or one band of it.
@@ -138,11 +147,14 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
           break;
       }
     }
+  }
+  for (UvAtlas& atlas : atlases) {
     set.charts.push_back(atlas.charts);
-    set.sizes.push_back(size);
     set.texels_per_unit.push_back(atlas.texels_per_unit);
     set.lods.push_back(std::move(atlas.meshes));
   }
+  for (std::size_t k = 0; k < lods.size(); ++k) set.sizes.push_back(lodMapSize(params, int(k)));
+  for (std::vector<TextureFile>& lod : files) set.files.insert(set.files.end(), lod.begin(), lod.end());
   return set;
 }
 

@@ -9,8 +9,9 @@
 // LOD0's seams (docs/textures.md, "The LOD chain"). Occlusion is cast per LOD vertex
 // (ambient_occlusion.h). Only `params.maps` are made. Deterministic: the files are
 // byte-identical at any thread count. A large map (a hero's 4096² LOD0) is made and written
-// in bands of rows, never whole: the set's memory is the ray scene, the LOD's texel map and
-// hits, and one band (docs/textures.md, "Memory").
+// in bands of rows, never whole, and LOD0's maps come last, once the ray scene is freed: the
+// set's memory is the ray scene or a band, with the LOD's texel map and hits (docs/textures.md,
+// "Memory").
 #pragma once
 
 #include <cstdint>
@@ -53,7 +54,7 @@ struct TextureSet {
   std::vector<std::size_t> charts;      // per LOD
   std::vector<int> sizes;               // per LOD: its maps' width and height, texels
   std::vector<double> texels_per_unit;  // per LOD: texel density, texels per world unit
-  std::vector<TextureFile> files;       // in the order written
+  std::vector<TextureFile> files;       // LOD by LOD, LOD0 first, each LOD's in the order of params.maps
   std::size_t missed = 0;               // covered texels whose rays found no source within the cage
   // Per step ("lod0 rays", "lod0 normal", …): wall-clock seconds and the process's CPU
   // seconds (all threads) over it.
