@@ -3,7 +3,9 @@
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -74,6 +76,27 @@ void sceneLinearToDisplay(std::vector<float>& rgb, int width, int height, const 
 float linearToSrgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint8_t linearToSrgbByte(float linear) {
+  // steps[b]: the least float in [0, 1] whose code is above b, found by bisection over the
+  // floats' bit patterns (in order for non-negative floats). The codes rise with the value, so
+  // the code of x is the number of steps at or below it.
+  static const std::array<float, 255> steps = [] {
+    const auto code = [](float x) { return long(std::lround(linearToSrgb(x) * 255.0f)); };
+    std::array<float, 255> s{};
+    for (long b = 0; b < 255; ++b) {
+      std::uint32_t lo = 0, hi = std::bit_cast<std::uint32_t>(1.0f);  // code(lo) <= b < code(hi)
+      while (hi - lo > 1) {
+        const std::uint32_t mid = lo + (hi - lo) / 2;
+        (code(std::bit_cast<float>(mid)) > b ? hi : lo) = mid;
+      }
+      s[std::size_t(b)] = std::bit_cast<float>(hi);
+    }
+    return s;
+  }();
+  if (!(linear > 0.0f)) return 0;  // NaN too
+  return std::uint8_t(std::upper_bound(steps.begin(), steps.end(), linear) - steps.begin());
 }
 
 float srgbToLinear(float c) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -32,5 +33,10 @@ void sceneLinearToDisplay(std::vector<float>& rgb, int width, int height,
 // PLY and OBJ store colours.
 float linearToSrgb(float linear);
 float srgbToLinear(float srgb);
+
+// The 8-bit sRGB code of a linear value: lround(linearToSrgb(linear) · 255), exactly, found
+// among the 255 linear values where the code steps up (a table made once) instead of a power
+// per call: a texture set converts millions of texels. NaN gives 0.
+std::uint8_t linearToSrgbByte(float linear);
 
 }  // namespace rockbake

@@ -22,7 +22,7 @@ void put(std::string& out, T value) {
 }
 
 std::uint8_t srgb8(float linear) {
-  return std::uint8_t(std::lround(linearToSrgb(linear) * 255.0f));
+  return linearToSrgbByte(linear);
 }
 
 }  // namespace

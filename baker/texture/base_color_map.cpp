@@ -18,8 +18,7 @@ TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& lo
                         : m.colluvium.size() == m.positions.size() ? float(at.scalar(m.colluvium))
                                                                    : 0.0f;
     const double factor = look.colourFactor(at.vector(m.positions), cover);
-    for (int k = 0; k < 3; ++k)
-      out[k] = std::uint8_t(std::lround(linearToSrgb(float(colour[std::size_t(k)] * factor)) * 255.0f));
+    for (int k = 0; k < 3; ++k) out[k] = linearToSrgbByte(float(colour[std::size_t(k)] * factor));
   });
 }
 
