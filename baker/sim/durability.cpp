@@ -32,12 +32,16 @@ inline double fade(double t) {
 inline double lerp(double t, double a, double b) {
   return a + t * (b - a);
 }
-// The 12 edge directions of a cube (plus 4 repeats), as in the reference implementation.
+// The 12 edge directions of a cube (plus 4 repeats), as in the reference implementation,
+// as a table: the reference picks and negates two of x, y, z with branches on the hash, which
+// the processor cannot predict (a third of the noise's time went to them). The table's sum
+// has the same value: its third term is ±0.
+constexpr double kGradient[16][3] = {{1, 1, 0},  {-1, 1, 0},  {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
+                                     {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1},  {0, 1, -1}, {0, -1, -1},
+                                     {1, 1, 0},  {0, -1, 1},  {-1, 1, 0}, {0, -1, -1}};
 inline double grad(int hash, double x, double y, double z) {
-  const int h = hash & 15;
-  const double u = h < 8 ? x : y;
-  const double v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
-  return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+  const double* g = kGradient[hash & 15];
+  return g[0] * x + g[1] * y + g[2] * z;
 }
 
 }  // namespace
