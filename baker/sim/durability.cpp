@@ -34,7 +34,7 @@ inline double lerp(double t, double a, double b) {
 }
 // The 12 edge directions of a cube (plus 4 repeats), as in the reference implementation,
 // as a table: the reference picks and negates two of x, y, z with branches on the hash, which
-// the processor cannot predict (a third of the noise's time went to them). The table's sum
+// the processor cannot predict (a quarter of the noise's time went to them). The table's sum
 // has the same value: its third term is ±0.
 constexpr double kGradient[16][3] = {{1, 1, 0},  {-1, 1, 0},  {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
                                      {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1},  {0, 1, -1}, {0, -1, -1},
