@@ -96,7 +96,10 @@ std::uint8_t linearToSrgbByte(float linear) {
     return s;
   }();
   if (!(linear > 0.0f)) return 0;  // NaN too
-  return std::uint8_t(std::upper_bound(steps.begin(), steps.end(), linear) - steps.begin());
+  // A binary search of fixed steps, without branches on the value (they would not be predicted).
+  std::size_t code = 0;
+  for (std::size_t half = 128; half > 0; half /= 2) code += steps[code + half - 1] <= linear ? half : 0;
+  return std::uint8_t(code);
 }
 
 float srgbToLinear(float c) {
