@@ -68,6 +68,7 @@ std::string deflateBand(const std::uint8_t* rows, const std::uint8_t* above_row,
   const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
   const bool ok = last ? status == Z_STREAM_END : status == Z_OK && z.avail_in == 0;
   out.resize(out.size() - z.avail_out);
+  out.shrink_to_fit();  // it was sized for the worst case, and sixteen are held until their chunk is written
   deflateEnd(&z);
   if (!ok) throw std::runtime_error("zlib: deflate failed");
   return out;
@@ -143,13 +144,7 @@ void writePngFile(const std::filesystem::path& file, const void* pixels, int siz
 }
 
 void writePngFile(const std::filesystem::path& file, int size, int channels, int bits, bool srgb, const PngRows& rows) {
-  const std::size_t stride = std::size_t(std::max(size, 0)) * std::size_t(channels) * std::size_t(bits / 8);
-  std::vector<std::uint8_t> group;
-  encodePng(file, size, channels, bits, srgb, [&](int y0, int y1) {
-    group.resize(std::size_t(y1 - y0) * stride);
-    rows(y0, y1, group.data());
-    return static_cast<const std::uint8_t*>(group.data());
-  });
+  encodePng(file, size, channels, bits, srgb, rows);
 }
 
 }  // namespace rockbake::texture_detail

@@ -20,8 +20,9 @@ namespace rockbake::texture_detail {
 // (16-bit samples in the host's order). Throws std::runtime_error if zlib or the write fails.
 void writePngFile(const std::filesystem::path& file, const void* pixels, int size, int channels, int bits, bool srgb);
 
-// Fills rows y0 … y1 − 1 of the image (y1 − y0 rows of size · channels samples) into `into`.
-using PngRows = std::function<void(int y0, int y1, std::uint8_t* into)>;
+// Rows y0 … y1 − 1 of the image, contiguous (y1 − y0 rows of size · channels samples); they
+// need only stay valid until the next call.
+using PngRows = std::function<const std::uint8_t*(int y0, int y1)>;
 
 // The same file from rows pulled in order, kGroup · kBandRows (512) at a time: a map made in
 // bands is encoded without ever being whole in memory. Exceptions from `rows` propagate.

@@ -44,19 +44,35 @@ void writePng(const std::filesystem::path& file, const TextureImage<T>& image, b
   }
 }
 
-// Serves a map's rows in order from bands of `band_rows` rows made on demand, one band held.
+// Serves a map's rows in order from bands of `band_rows` rows made on demand, one band held:
+// rows that lie in one band are served in place, others copied together.
 template <class T>
 class BandRows {
  public:
   BandRows(int size, int channels, int band_rows, const TextureBands<T>& make)
       : size_(size), channels_(channels), band_rows_(std::max(1, band_rows)), make_(make) {}
 
+  const std::uint8_t* rows(int y0, int y1) {
+    const std::size_t width = std::size_t(size_) * std::size_t(channels_);
+    if (holds(y0) && holds(y1 - 1)) return bytes(row(y0));
+    group_.resize(std::size_t(y1 - y0) * width);
+    for (int y = y0; y < y1; ++y) std::memcpy(&group_[std::size_t(y - y0) * width], row(y), width * sizeof(T));
+    return bytes(group_.data());
+  }
+
+ private:
+  bool holds(int y) const {
+    return !band_.pixels.empty() && y >= band_.first_row &&
+           std::size_t(y - band_.first_row) * std::size_t(size_) * std::size_t(channels_) < band_.pixels.size();
+  }
+  static const std::uint8_t* bytes(const T* p) { return reinterpret_cast<const std::uint8_t*>(p); }
+
   const T* row(int y) {
     const std::size_t width = std::size_t(size_) * std::size_t(channels_);
-    if (band_.pixels.empty() || y < band_.first_row ||
-        std::size_t(y - band_.first_row) * width >= band_.pixels.size()) {
+    if (!holds(y)) {
       const int first = y / band_rows_ * band_rows_;
       const int last = std::min(size_, first + band_rows_);
+      band_ = TextureImage<T>{};  // the old band is freed before the next is made
       band_ = make_(first, last);
       if (band_.first_row != first || band_.pixels.size() != std::size_t(last - first) * width)
         throw std::runtime_error("the band of rows " + std::to_string(first) + "–" + std::to_string(last) +
@@ -65,10 +81,10 @@ class BandRows {
     return &band_.pixels[std::size_t(y - band_.first_row) * width];
   }
 
- private:
   int size_, channels_, band_rows_;
   const TextureBands<T>& make_;
   TextureImage<T> band_;
+  std::vector<T> group_;
 };
 
 template <class T>
@@ -81,12 +97,8 @@ void writePngBands(const std::filesystem::path& file, int size, int channels, bo
   }
   try {
     BandRows<T> source(size, channels, band_rows, bands);
-    const std::size_t width = std::size_t(size) * std::size_t(channels);
-    texture_detail::writePngFile(
-        file, size, channels, int(8 * sizeof(T)), srgb, [&](int y0, int y1, std::uint8_t* into) {
-          for (int y = y0; y < y1; ++y)
-            std::memcpy(into + std::size_t(y - y0) * width * sizeof(T), source.row(y), width * sizeof(T));
-        });
+    texture_detail::writePngFile(file, size, channels, int(8 * sizeof(T)), srgb,
+                                 [&](int y0, int y1) { return source.rows(y0, y1); });
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot write PNG " + file.string() + ": " + e.what());
   }
