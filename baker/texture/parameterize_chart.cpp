@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -110,7 +111,12 @@ bool isDisk(const LocalChart& c) {
 }
 
 // The LSCM energy's normal equations with two vertices pinned; returns uv per local vertex.
+// The energy is a complex least-squares problem in z = u + i v (one complex row per triangle,
+// Lévy et al. 2002, §3), so its normal equations are Hermitian in the m free vertices: solved
+// as such they have a quarter of the entries, and half the unknowns to order, of the same
+// equations split into real u and v.
 std::vector<UV> solveLscm(const SurfaceMesh& mesh, const LocalChart& c) {
+  using Complex = std::complex<double>;
   const std::size_t n = c.vertices.size();
   const auto position = [&](std::uint32_t l) { return toVec3d(mesh.positions[c.vertices[l]]); };
   // Pins: the boundary vertex farthest from the first boundary vertex, and the one farthest from it.
@@ -132,32 +138,28 @@ std::vector<UV> solveLscm(const SurfaceMesh& mesh, const LocalChart& c) {
     if (v != p0 && v != p1) unknown[v] = m++;
   if (m == 0) return uv;
 
-  // Variables: u of vertex v at unknown[v], its v at m + unknown[v].
-  std::vector<Eigen::Triplet<double>> entries;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * m);
-  // One least-squares row: up to six (variable, coefficient) terms, variable = vertex · 2 + (0 u, 1 v).
+  std::vector<Eigen::Triplet<Complex>> entries;
+  entries.reserve(9 * c.tris.size() + 4 * c.edges.size());
+  Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(m);
+  // One complex row: up to three (vertex, coefficient) terms. Its normal equations take
+  // conj(c_i) c_j at (i, j) and move the pinned vertices' terms to the right-hand side.
   struct Row {
-    std::array<std::pair<int, double>, 6> terms;
+    std::array<std::pair<std::uint32_t, Complex>, 3> terms;
     int size = 0;
-    void add(int var, double coef) { terms[std::size_t(size++)] = {var, coef}; }
-    const std::pair<int, double>* begin() const { return terms.data(); }
-    const std::pair<int, double>* end() const { return terms.data() + size; }
+    void add(std::uint32_t v, Complex coef) { terms[std::size_t(size++)] = {v, coef}; }
+    const std::pair<std::uint32_t, Complex>* begin() const { return terms.data(); }
+    const std::pair<std::uint32_t, Complex>* end() const { return terms.data() + size; }
   };
   const auto addRow = [&](const Row& row) {
-    double pinned = 0;
-    for (const auto& [var, coef] : row) {
-      const std::uint32_t v = std::uint32_t(var / 2);
-      if (unknown[v] < 0) pinned += coef * uv[v][var % 2];
-    }
+    Complex pinned = 0;
+    for (const auto& [v, coef] : row)
+      if (unknown[v] < 0) pinned += coef * Complex(uv[v][0], uv[v][1]);
     for (const auto& [vi, ci] : row) {
-      const int i = unknown[vi / 2];
+      const int i = unknown[vi];
       if (i < 0) continue;
-      const int ri = i + (vi % 2) * m;
-      rhs[ri] -= ci * pinned;
-      for (const auto& [vj, cj] : row) {
-        const int j = unknown[vj / 2];
-        if (j >= 0) entries.emplace_back(ri, j + (vj % 2) * m, ci * cj);
-      }
+      rhs[i] -= std::conj(ci) * pinned;
+      for (const auto& [vj, cj] : row)
+        if (const int j = unknown[vj]; j >= 0) entries.emplace_back(i, j, std::conj(ci) * cj);
     }
   };
   for (const auto& t : c.tris) {
@@ -168,35 +170,30 @@ std::vector<UV> solveLscm(const SurfaceMesh& mesh, const LocalChart& c) {
     const Vec3d x = normalised(e1, kZero), y = normalised(cross(normal, e1), kZero);
     const std::array<double, 3> px{0.0, length(e1), dot(e2, x)}, py{0.0, 0.0, dot(e2, y)};
     const double w = 1.0 / std::sqrt(area);
-    Row re, im;
+    Row row;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const double wr = (py[j1] - py[j2]) * w, wi = (px[j2] - px[j1]) * w;  // W_j = wr + i wi
-      // (wr + i wi)(u + i v): real part wr u − wi v, imaginary part wi u + wr v.
-      re.add(int(2 * t[j]), wr), re.add(int(2 * t[j] + 1), -wi);
-      im.add(int(2 * t[j]), wi), im.add(int(2 * t[j] + 1), wr);
+      row.add(t[j], Complex((py[j1] - py[j2]) * w, (px[j2] - px[j1]) * w));  // W_j
     }
-    addRow(re);
-    addRow(im);
+    addRow(row);
   }
   // A faint membrane over the edges keeps the system definite where triangles carry no
   // area (a vertex only zero-area triangles touch); far below the conformal terms elsewhere.
   const double faint = std::sqrt(1e-7);
-  for (const auto& [a, b] : c.edges)
-    for (int axis = 0; axis < 2; ++axis) {
-      Row row;
-      row.add(int(2 * a + axis), faint);
-      row.add(int(2 * b + axis), -faint);
-      addRow(row);
-    }
-  Eigen::SparseMatrix<double> normal(2 * m, 2 * m);
+  for (const auto& [a, b] : c.edges) {
+    Row row;
+    row.add(a, faint);
+    row.add(b, -faint);
+    addRow(row);
+  }
+  Eigen::SparseMatrix<Complex> normal(m, m);
   normal.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<Complex>> solver(normal);
   if (solver.info() != Eigen::Success) return {};
-  const Eigen::VectorXd x = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite()) return {};
+  const Eigen::VectorXcd z = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !z.allFinite()) return {};
   for (std::uint32_t v = 0; v < n; ++v)
-    if (unknown[v] >= 0) uv[v] = {x[unknown[v]], x[unknown[v] + m]};
+    if (unknown[v] >= 0) uv[v] = {z[unknown[v]].real(), z[unknown[v]].imag()};
   return uv;
 }
 
