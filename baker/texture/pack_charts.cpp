@@ -432,6 +432,7 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWor
       throw std::runtime_error("cannot pack " + std::to_string(charts.size()) + " UV charts into a " +
                                std::to_string(size) + "² map with " + std::to_string(padding) +
                                "-texel gutters (raise texture.size or lower texture.padding)");
+    prints.resize(charts.size());
     tbb::parallel_for(std::size_t(0), charts.size(), [&](std::size_t i) {
       prints[i][0] = footprint(charts[i], place[i], density, grow);
       prints[i][1] = halfTurn(prints[i][0]);
@@ -444,7 +445,7 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWor
       fits = density;
       fits_height = height;
       best_spots = spots;
-      best_prints = prints;
+      std::swap(best_prints, prints);  // the next round makes every footprint afresh
       if (height >= 0.98 * size) break;  // within 1 % of the density that fills the map
     } else {
       fails = density;
