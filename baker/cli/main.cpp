@@ -557,6 +557,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log every stage in detail");
+  app.fallthrough();  // the subcommands hand -v on: `rockbake bake P -v` as well as `rockbake -v bake P`
 
   BakeArgs bake;
   ResumeArgs resume;

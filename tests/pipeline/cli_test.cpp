@@ -40,6 +40,23 @@ TEST(Cli, BadArgumentsExitTwo) {
   EXPECT_EQ(runRockbake({"bake", presetPath("goblin.yaml"), "--frobnicate"}).exit_status, 2);
 }
 
+// -v / --verbose is the tool's, and is taken before or after the subcommand (docs/command-line.md).
+TEST(Cli, VerboseIsTakenBeforeOrAfterTheSubcommand) {
+  TempDir dir;
+  const auto bake = [&](std::vector<std::string> args, const char* out) {
+    std::vector<std::string> all{"bake",        presetPath("goblin.yaml"), "--resolution", "24",
+                                 "--no-render", "--no-textures",           "-o",           (dir.path() / out).string()};
+    all.insert(all.end(), args.begin(), args.end());
+    return runRockbake(all);
+  };
+  const auto quiet = bake({}, "quiet"), after = bake({"-v"}, "after"), long_after = bake({"--verbose"}, "long");
+  const auto before = runRockbake({"-v", "bake", presetPath("goblin.yaml"), "--resolution", "24", "--no-render",
+                                   "--no-textures", "-o", (dir.path() / "before").string()});
+  for (const auto* r : {&quiet, &after, &long_after, &before}) ASSERT_EQ(r->exit_status, 0) << r->output;
+  EXPECT_EQ(quiet.output.find("debug:"), std::string::npos) << quiet.output;
+  for (const auto* r : {&after, &long_after, &before}) EXPECT_NE(r->output.find("debug:"), std::string::npos);
+}
+
 TEST(Cli, BakeWritesTheVdbAndStats) {
   TempDir dir;
   writeText(dir.path() / "small.yaml", kSmallPreset);
