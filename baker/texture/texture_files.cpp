@@ -54,7 +54,8 @@ class BandRows {
 
   const std::uint8_t* rows(int y0, int y1) {
     const std::size_t width = std::size_t(size_) * std::size_t(channels_);
-    if (holds(y0) && holds(y1 - 1)) return bytes(row(y0));
+    const T* first = row(y0);  // makes y0's band when it is not the one held
+    if (holds(y1 - 1)) return bytes(first);
     group_.resize(std::size_t(y1 - y0) * width);
     for (int y = y0; y < y1; ++y) std::memcpy(&group_[std::size_t(y - y0) * width], row(y), width * sizeof(T));
     return bytes(group_.data());
