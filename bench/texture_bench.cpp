@@ -38,6 +38,7 @@
 #include <string>
 
 #include "core/hash.h"
+#include "core/memory.h"
 #include "core/png_image.h"
 #include "core/stopwatch.h"
 #include "inputs/resolve_shape.h"
@@ -355,6 +356,7 @@ void atlasOnly(const Asset& asset, const TextureParams& params, const std::files
 }  // namespace rockbake
 
 int main(int argc, char** argv) {
+  rockbake::returnLargeBlocksToTheSystem();  // as the command line does
   using namespace rockbake;
   std::filesystem::path preset_file = std::filesystem::path(ROCKBAKE_SOURCE_DIR) / "presets" / "goblin.yaml";
   std::optional<int> resolution;

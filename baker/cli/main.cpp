@@ -26,6 +26,7 @@
 #include "core/abnormal_exit.h"
 #include "core/data_dir.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
@@ -548,6 +549,7 @@ int exitStatusOf(const std::function<int()>& what) {
 
 int main(int argc, char** argv) {
   rockbake::installAbnormalExitHandler();
+  rockbake::returnLargeBlocksToTheSystem();
   auto logger = spdlog::stderr_color_mt("rockbake");
   logger->set_pattern("%^%l%$: %v");
   spdlog::set_default_logger(logger);

@@ -1,5 +1,9 @@
 #include "core/memory.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -37,6 +41,12 @@ std::uint64_t memoryHeadroomBytes() {
     headroom = std::min<std::uint64_t>(headroom, size < limit.rlim_cur ? limit.rlim_cur - size : 0);
   }
   return headroom;
+}
+
+void returnLargeBlocksToTheSystem() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
 }
 
 }  // namespace rockbake

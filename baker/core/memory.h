@@ -16,4 +16,12 @@ std::uint64_t memoryLimitBytes();
 // limit leaves above its current size, and the memory the machine has available.
 std::uint64_t memoryHeadroomBytes();
 
+// From here on, blocks of a mebibyte or more (a texture map's bands, the texel map, the
+// simulation's arrays) are mapped afresh and unmapped when freed. By default the C library
+// raises that threshold to the largest block freed so far, up to 32 MiB, and keeps such
+// blocks in its heaps once freed (16 to 74 MiB of a hero's texture set's peak). The
+// command line sets it first thing, so every stage and every bake of a library runs alike
+// (docs/textures.md §11). A no-op outside glibc.
+void returnLargeBlocksToTheSystem();
+
 }  // namespace rockbake

@@ -31,16 +31,6 @@ void releaseFreedHeap() {
 #endif
 }
 
-// Blocks of a mebibyte or more (a map's bands, their deflated output, the texel map) mapped
-// afresh and unmapped when freed. By default the C library raises that threshold to the size
-// of the largest block freed so far, up to 32 MiB, and then keeps such blocks in its heaps
-// once freed: 16 MiB of a hero's set's peak. Process-wide, and the same for every set.
-void mapLargeBlocks() {
-#if defined(__GLIBC__)
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
-#endif
-}
-
 }  // namespace
 
 TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
@@ -48,7 +38,6 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   const TextureParams& params = request.params;
   checkTextureParams(params);
   std::filesystem::create_directories(request.folder);
-  mapLargeBlocks();
   TextureSet set;
   Stopwatch clock;
   std::clock_t cpu = std::clock();
