@@ -21,10 +21,6 @@ void put(std::string& out, T value) {
   out.append(bytes, sizeof(T));
 }
 
-std::uint8_t srgb8(float linear) {
-  return linearToSrgbByte(linear);
-}
-
 }  // namespace
 
 void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
@@ -45,7 +41,7 @@ void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
   for (std::size_t i = 0; i < n; ++i) {
     for (float x : m.positions[i]) put(out, x);
     for (float x : m.normals[i]) put(out, x);
-    for (float x : m.colors[i]) put(out, srgb8(x));
+    for (float x : m.colors[i]) put(out, linearToSrgbByte(x));
     put(out, m.durability[i]);
     put(out, m.colluvium[i]);
     put(out, m.curvature[i]);

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <functional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -74,10 +73,8 @@ std::string deflateBand(const std::uint8_t* rows, const std::uint8_t* above_row,
   return out;
 }
 
-// Encodes with `rowsAt(y0, y1)` giving rows y0 … y1 − 1 contiguous, called for consecutive
-// groups in order; what it returns need only stay valid until the next call.
-void encodePng(const std::filesystem::path& file, int size, int channels, int bits, bool srgb,
-               const std::function<const std::uint8_t*(int, int)>& rowsAt) {
+// Encodes with `rowsAt` (png_encoder.h's PngRows) called for consecutive groups in order.
+void encodePng(const std::filesystem::path& file, int size, int channels, int bits, bool srgb, const PngRows& rowsAt) {
   if (size <= 0 || channels < 1 || channels > 4 || (bits != 8 && bits != 16))
     throw std::runtime_error("encodePng: unsupported image");
   const std::size_t stride = std::size_t(size) * std::size_t(channels) * std::size_t(bits / 8);

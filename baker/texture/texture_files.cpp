@@ -53,7 +53,7 @@ class BandRows {
       : size_(size), channels_(channels), band_rows_(std::max(1, band_rows)), make_(make) {}
 
   const std::uint8_t* rows(int y0, int y1) {
-    const std::size_t width = std::size_t(size_) * std::size_t(channels_);
+    const std::size_t width = rowWidth();
     const T* first = row(y0);  // makes y0's band when it is not the one held
     if (holds(y1 - 1)) return bytes(first);
     group_.resize(std::size_t(y1 - y0) * width);
@@ -62,14 +62,15 @@ class BandRows {
   }
 
  private:
+  std::size_t rowWidth() const { return std::size_t(size_) * std::size_t(channels_); }  // samples
   bool holds(int y) const {
     return !band_.pixels.empty() && y >= band_.first_row &&
-           std::size_t(y - band_.first_row) * std::size_t(size_) * std::size_t(channels_) < band_.pixels.size();
+           std::size_t(y - band_.first_row) * rowWidth() < band_.pixels.size();
   }
   static const std::uint8_t* bytes(const T* p) { return reinterpret_cast<const std::uint8_t*>(p); }
 
   const T* row(int y) {
-    const std::size_t width = std::size_t(size_) * std::size_t(channels_);
+    const std::size_t width = rowWidth();
     if (!holds(y)) {
       const int first = y / band_rows_ * band_rows_;
       const int last = std::min(size_, first + band_rows_);
