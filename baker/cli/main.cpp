@@ -30,6 +30,7 @@
 #include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
+#include "pipeline/individual_json.h"
 #include "pipeline/library_bake.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
@@ -324,6 +325,7 @@ struct PresetShowArgs {
   std::vector<std::string> sets;
   std::optional<std::uint64_t> seed;
   std::optional<int> resolution;
+  bool individual = false;
 };
 
 CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
@@ -335,6 +337,8 @@ CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
   addSets(command, args.sets);
   addSeed(command, args.seed, "Override the preset's seed");
   addResolution(command, args.resolution, "Override grid.resolution");
+  command->add_flag("--individual", args.individual,
+                    "Print what the seed draws from the preset's family (docs/model.md §11) instead");
   return command;
 }
 
@@ -342,7 +346,13 @@ CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
 // (the JSON stats.json embeds).
 int runPresetShow(const PresetShowArgs& args) {
   const rockbake::Preset preset = rockbake::loadPreset(args.preset, {args.sets, args.seed, args.resolution});
-  std::cout << rockbake::presetToJson(preset).dump(2) << std::endl;
+  if (args.individual && !preset.family)
+    throw rockbake::InputError(preset.locate(""), "family",
+                               "the preset has no family: every seed weathers its "
+                               "blockout as given",
+                               "add a family: block (docs/preset-reference.md)");
+  std::cout << (args.individual ? rockbake::individualJson(preset).dump(2) : rockbake::presetToJson(preset).dump(2))
+            << std::endl;
   return kExitOk;
 }
 

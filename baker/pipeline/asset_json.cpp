@@ -108,6 +108,7 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   j["preview"] = asset.preview.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.preview);
   j["movie"] = asset.movie.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.movie);
   if (asset.collision) j["collision"] = collisionJson(*asset.collision, asset.units_per_meter);
+  if (!asset.individual.is_null()) j["individual"] = asset.individual;
   j["input_hash"] = asset.input_hash;
   return j;
 }

@@ -12,6 +12,8 @@
 //    "preview": "render.png" | null, "movie": "turntable.mp4" | null,
 //    "collision": {"file": "collision.glb", "naming": "unreal" | "godot", "hull_count", "vertex_count",
 //                  "hulls": [{"node", "vertices", "volume_m3"}, ..]},   // only when export lists collision
+//    "individual": {..}                                          // what the seed drew from the family
+//                                                                // (pipeline/individual_json.h); only with one
 //    "input_hash"}
 //
 // Everything in it is a function of the bake's inputs (no times, no host).
@@ -24,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/surface_mesh.h"
 
@@ -74,6 +76,7 @@ struct AssetDescription {
   std::string movie;           // the turntable movie, relative path, empty: none
   std::string input_hash;
   std::optional<AssetCollision> collision;  // none: export does not list collision
+  nlohmann::ordered_json individual;        // null: the preset has no family
 };
 
 // Area-weighted mean of the vertex colours (linear RGB) over both surfaces.

@@ -22,6 +22,7 @@
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
 #include "pipeline/export_meshes.h"
+#include "pipeline/individual_json.h"
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
 #include "preset/preset_json.h"
@@ -362,6 +363,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
   asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);
   asset.collision = collision;
+  asset.individual = individualJson(preset);
   writeAssetJson(asset, bake.dir());
 }
 
@@ -371,6 +373,8 @@ void writeStats(Bake& bake, const Weathered& weathered) {
   stats["cycles"] = weathered.cycles;
   stats["stages"] = bakeTimingsJson(bake.timings);
   stats["preset"] = presetToJson(bake.preset);
+  if (const nlohmann::ordered_json individual = individualJson(bake.preset); !individual.is_null())
+    stats["individual"] = individual;
   bake.checkCancel();
   writeFileAtomically(bake.dir() / "stats.json", stats.dump(2) + "\n");
 }

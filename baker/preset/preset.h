@@ -228,10 +228,10 @@ struct RenderParams {
   std::string template_name = "studio";
   int width = 640;
   int height = 480;
-  int quality = 9;           // POV-Ray +Q: 0..11
-  double antialias = 0.3;    // POV-Ray +A threshold; 0 turns antialiasing off
-  int turntable_frames = 0;  // 0: no turntable
-  int turntable_fps = 24;    // turntable.mp4's frame rate, 1 … 120
+  int quality = 9;                 // POV-Ray +Q: 0..11
+  double antialias = 0.3;          // POV-Ray +A threshold; 0 turns antialiasing off
+  int turntable_frames = 0;        // 0: no turntable
+  int turntable_fps = 24;          // turntable.mp4's frame rate, 1 … 120
   bool turntable_lookdev = false;  // an 18 % grey ball, a colour chart and a three-point rig in frame
 };
 
@@ -251,11 +251,40 @@ struct CollisionParams {
   bool colluvium = false;                   // also hull the colluvium, separately
 };
 
+// ---- families (docs/model.md §11) ----
+// A preset's family: what a seed may change of the blockout, and by how much.
+// Each seed draws one individual from these ranges (sim/family.h); the grid is
+// then fitted to that individual. Intervals are [min, max] with min <= max.
+using Interval = std::array<double, 2>;
+struct FamilyWarp {
+  double bend = 0.0;   // the top's sideways offset at most, as a fraction of the height, 0..1
+  double taper = 0.0;  // the width's change from base to top at most, as a fraction, 0..0.9
+  double twist = 0.0;  // the top's turn about the vertical at most, degrees, 0..180
+};
+struct FamilyFracture {
+  std::array<int, 2> cuts{1, 2};  // how many cuts along the joint sets' planes, 0..8
+  Interval depth{0.1, 0.35};      // how far each cut reaches into the shape, a fraction of its width, (0, 0.9]
+};
+enum class FamilyGeology { Turns, Fixed };
+struct FamilyParams {
+  Interval scale{1.0, 1.0};  // uniform size factor, > 0, drawn log-uniformly
+  // Per-axis factors on top of scale, the blockout's own x, y and z (up), > 0, log-uniform.
+  std::array<Interval, 3> stretch{{{1.0, 1.0}, {1.0, 1.0}, {1.0, 1.0}}};
+  Interval azimuth{0.0, 360.0};  // turn about the vertical, degrees
+  double tilt = 0.0;             // lean at most, degrees, 0..90, towards a seeded direction
+  FamilyWarp warp;
+  std::optional<FamilyFracture> fracture;  // none: the blockout is not cut
+  // Turns: strata and joints turn with the blockout's azimuth (the rock is one
+  // block of its bedrock); Fixed: the geology stays put in the world.
+  FamilyGeology geology = FamilyGeology::Turns;
+};
+
 // What the simulation reads (docs/model.md): everything that decides the voxels.
 struct SimParams {
   std::uint64_t seed = 0;  // every random choice derives from (seed, purpose, ...)
   GridParams grid;
   ShapeParams shape;
+  std::optional<FamilyParams> family;  // none: every seed weathers the blockout as given
   DurabilityParams durability;
   std::vector<BubbleBand> bubbles;  // never empty after loading
   ResponseParams response;

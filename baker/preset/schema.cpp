@@ -87,6 +87,12 @@ std::span<const EnumName<LodMapSize>> enumNames() {
   return names;
 }
 
+template <>
+std::span<const EnumName<FamilyGeology>> enumNames() {
+  static constexpr EnumName<FamilyGeology> names[] = {{FamilyGeology::Turns, "turns"}, {FamilyGeology::Fixed, "fixed"}};
+  return names;
+}
+
 namespace {
 
 constexpr const char* kWorld = "world units";
@@ -195,6 +201,50 @@ const MapSpec<ShapeParams>& shapeSpec() {
       "Exactly one kind, and beside it optionally `center` and `variation` ([model.md §8](model.md)). Images "
       "are at most 256 M pixels, in any PNG format (alpha composited over black). A blockout must be closed: "
       "every edge shared by exactly two faces of opposite orientation."};
+  return spec;
+}
+
+// ---- families (docs/model.md §11) ----
+
+const MapSpec<FamilyWarp>& familyWarpSpec() {
+  static const Keys<FamilyWarp> k;
+  static const MapSpec<FamilyWarp> spec{{
+      k("bend", &FamilyWarp::bend, numberIn(0.0, 1.0), "the top's sideways offset at most, a fraction of the height"),
+      k("taper", &FamilyWarp::taper, numberIn(0.0, 0.9), "the width's change from base to top at most, a fraction"),
+      k("twist", &FamilyWarp::twist, numberIn(0.0, 180.0), "the top's turn about the vertical at most").unit(kDegrees),
+  }};
+  return spec;
+}
+
+const MapSpec<FamilyFracture>& familyFractureSpec() {
+  static const Keys<FamilyFracture> k;
+  static const MapSpec<FamilyFracture> spec{{
+      k("cuts", &FamilyFracture::cuts, wholeInterval(0, 8), "how many cuts along the joint sets' planes"),
+      k("depth", &FamilyFracture::depth, interval(0.0, 0.9, true),
+        "how far each cut reaches into the shape, a fraction of its width across the plane"),
+  }};
+  return spec;
+}
+
+const MapSpec<FamilyParams>& familySpec() {
+  static const Keys<FamilyParams> k;
+  static const MapSpec<FamilyParams> spec{
+      {
+          k("scale", &FamilyParams::scale, interval(0.0, 100.0, true), "the individual's size factor (log-uniform)"),
+          k("stretch", &FamilyParams::stretch, axisIntervals(0.0, 100.0),
+            "factors along the blockout's own x, y and z on top of scale: its proportions (log-uniform)"),
+          k("azimuth", &FamilyParams::azimuth, interval(-360.0, 360.0), "its turn about the vertical").unit(kDegrees),
+          k("tilt", &FamilyParams::tilt, numberIn(0.0, 90.0), "its lean at most, towards a seeded direction")
+              .unit(kDegrees),
+          k("warp", &FamilyParams::warp, mapValue<familyWarpSpec>(), "a low-frequency bend, taper and twist"),
+          k("fracture", &FamilyParams::fracture, mapValue<familyFractureSpec>(),
+            "cuts along the preset's joint sets: a joint-bounded block"),
+          k("geology", &FamilyParams::geology, choice<FamilyGeology>(),
+            "whether strata and joints turn with the azimuth (`turns`) or stay put (`fixed`)"),
+      },
+      {},
+      "What a seed may change of the blockout; each seed draws one individual, and the grid is fitted to it "
+      "([model.md §11](model.md)). Ranges are `[min, max]`; a range with min = max fixes the value."};
   return spec;
 }
 
@@ -651,6 +701,8 @@ const MapSpec<Preset>& presetSpec() {
           k("shape", &Preset::shape, mapValue<shapeSpec>(), "the initial rock")
               .required("missing 'shape'", "for example shape: {box: {size: [2, 2, 2]}}"),
           k("durability", &Preset::durability, mapValue<durabilitySpec>(), "how hard the rock is"),
+          k("family", &Preset::family, mapValue<familySpec>(), "what each seed draws: a different individual")
+              .check(familyFitsThePreset),
           k("bubbles", &Preset::bubbles, bandList(), "the bubble graph: how curvature is measured at each altitude")
               .range("at least one band")
               .keyframed(KeyframePart::Bubbles)

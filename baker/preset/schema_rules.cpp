@@ -232,6 +232,47 @@ Value<std::vector<TextureMap>> textureMaps() {
 }
 
 // The files' `extends` were merged before the overrides; only an override can bring one back.
+namespace {
+// Two numbers, the first not above the second; `read` reads and checks each.
+template <class T, class Read>
+std::array<T, 2> readInterval(const Field& f, Read&& read) {
+  if (!f.isSequence() || f.size() != 2) f.fail("expected [min, max], found " + describe(f.yaml()));
+  const std::array<T, 2> v{read(f.item(0)), read(f.item(1))};
+  if (v[0] > v[1])
+    f.fail("min " + formatNumber(double(v[0])) + " is greater than max " + formatNumber(double(v[1])),
+           "write the smaller bound first");
+  return v;
+}
+std::string intervalRange(double lo, double hi, bool lo_open) {
+  return std::string(lo_open ? "(" : "[") + docNumber(lo) + ", " + docNumber(hi) + "], min ≤ max";
+}
+}  // namespace
+
+Value<Interval> interval(double lo, double hi, bool lo_open) {
+  return custom<Interval>("[min, max]", intervalRange(lo, hi, lo_open),
+                          [=](const Field& f, Interval& v, const ReadContext&) {
+                            v = readInterval<double>(f, [&](const Field& x) { return x.numberIn(lo, hi, lo_open); });
+                          });
+}
+
+Value<std::array<int, 2>> wholeInterval(int lo, int hi) {
+  return custom<std::array<int, 2>>("[min, max]", docWhole(lo) + " … " + docWhole(hi) + ", min ≤ max",
+                                    [=](const Field& f, std::array<int, 2>& v, const ReadContext&) {
+                                      v = readInterval<int>(f, [&](const Field& x) { return int(x.integer(lo, hi)); });
+                                    });
+}
+
+Value<std::array<Interval, 3>> axisIntervals(double lo, double hi) {
+  return custom<std::array<Interval, 3>>(
+      "3 × [min, max]", intervalRange(lo, hi, true) + ", for x, y, z",
+      [=](const Field& f, std::array<Interval, 3>& v, const ReadContext&) {
+        if (!f.isSequence() || f.size() != 3)
+          f.fail("expected three [min, max] ranges (x, y, z), found " + describe(f.yaml()));
+        for (std::size_t a = 0; a < 3; ++a)
+          v[a] = readInterval<double>(f.item(a), [&](const Field& x) { return x.numberIn(lo, hi, true); });
+      });
+}
+
 void refuseExtendsOverride(const Field& extends) {
   extends.fail("extends cannot be overridden", "name the base preset in the preset file");
 }
@@ -245,6 +286,22 @@ void oneNoisePerSegment(const Field& graph, const DurabilityGraph& g, const Dura
     n.fail("needs one entry per segment: " + std::to_string(segments) + " for " + std::to_string(g.points.size()) +
                " points, found " + std::to_string(n.size()),
            "use null for a segment without noise");
+}
+
+void familyFitsThePreset(const Field& root, const Preset& p, const Preset*, const ReadContext&) {
+  if (!p.family) return;
+  if (p.shape.center)
+    root.at("family").fail(
+        "a family fits the grid to each individual and places the shape itself, so "
+        "shape.center cannot be given with it",
+        "remove shape.center, or remove family to place the shape yourself");
+  if (p.family->fracture && p.family->fracture->cuts[1] > 0 && p.durability.joints.empty())
+    root.at("family")
+        .at("fracture")
+        .fail(
+            "a family's fracture cuts along the preset's joint sets, and "
+            "durability.joints has none",
+            "add durability.joints, or remove family.fracture");
 }
 
 void wallThinnerThanFootprint(const Field& corner, const InsideCornerShape& c, const InsideCornerShape*,

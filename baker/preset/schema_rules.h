@@ -34,6 +34,10 @@ Value<std::vector<std::string>> tagList();                   // asset names; rep
 Value<std::string> templateName();                           // a template in render_templates/, by name
 Value<int> textureSize();                                    // a power of two, 256 … 8192
 Value<std::vector<TextureMap>> textureMaps();                // map names, each once, at least one
+// [min, max] with min <= max, each in [lo, hi] (lo excluded when lo_open): a family's ranges.
+Value<Interval> interval(double lo, double hi, bool lo_open = false);
+Value<std::array<int, 2>> wholeInterval(int lo, int hi);               // [min, max] whole numbers
+Value<std::array<Interval, 3>> axisIntervals(double lo, double hi);  // [[min, max] × 3]: x, y, z, each in (lo, hi]
 
 void refuseExtendsOverride(const Field& extends);
 
@@ -52,6 +56,8 @@ void bandsGoUp(const Field& band, const BubbleBand& b, const BubbleBand* previou
 void bubbleFitsTheGrid(const Field& band, const BubbleBand& b, const BubbleBand*, const ReadContext& ctx);
 void lastBandReachesTheTop(const Field& bands, const std::vector<BubbleBand>& read);
 void layersSoftToDurable(const Field& layer, const PaletteLayer& l, const PaletteLayer* previous, const ReadContext&);
+// A family needs a shape the fitted grid can place (no shape.center) and joint sets to fracture along.
+void familyFitsThePreset(const Field& root, const Preset& p, const Preset*, const ReadContext&);
 void timeWithinCycleLimit(const Field& root, const Preset& p, const Preset*, const ReadContext& ctx);
 
 // When a preset gives no bubbles: one band, a sphere of a sixteenth of grid.size's longest side,

@@ -3,6 +3,7 @@
 #include "sim/bubble.h"
 #include "sim/distance_field.h"
 #include "sim/durability.h"
+#include "sim/family.h"
 #include "sim/shapes.h"
 
 #include <algorithm>
@@ -14,8 +15,10 @@ namespace rockbake {
 
 GridLayout computeGridLayout(const SimParams& preset) {
   GridLayout g;
-  const Vec3d& size = preset.grid.size;
-  g.h = std::max({size[0], size[1], size[2]}) / double(preset.grid.resolution);
+  // The voxel size is the preset's; the domain is fitted to the family's individual (sim/family.h).
+  const Vec3d& declared = preset.grid.size;
+  g.h = std::max({declared[0], declared[1], declared[2]}) / double(preset.grid.resolution);
+  const Vec3d size = simulationDomain(preset);
   int reach = 0;
   for (const auto& band : preset.bubbles) reach = std::max(reach, bubbleReach(band.bubble, g.h));
   // Bubble graphs that keyframes switch to later need the same margin.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
@@ -10,6 +11,7 @@
 #include "core/hash.h"
 #include "sim/distance_field.h"
 #include "sim/durability.h"
+#include "sim/family.h"
 #include "sim/grid_layout.h"
 #include "sim/mesh_shape.h"
 
@@ -123,6 +125,65 @@ void varyBoundary(std::vector<std::uint8_t>& inside, const GridLayout& g, const 
   });
 }
 
+// The blockout's inside test in the blockout's own frame (the preset's
+// grid.size, the shape at its centre): an analytic test, or a blockout mesh
+// voxelized on the preset's own grid and read at the nearest voxel.
+InsideTest blockoutInside(const ResolvedShape& shape, const SimParams& preset, const Vec3d& center) {
+  if (!std::holds_alternative<MeshShape>(shape.params.kind))
+    return insideTest(shape, center[0], center[1], center[2], preset);
+  SimParams own = preset;
+  own.family.reset();
+  const GridLayout g = computeGridLayout(own);
+  auto flags = std::make_shared<std::vector<std::uint8_t>>(voxelizeMesh(placeMesh(shape.mesh, center), g));
+  return [g, flags](double x, double y, double z) {
+    const int i = int(std::floor((x - g.origin[0]) / g.h)), j = int(std::floor((y - g.origin[1]) / g.h)),
+              k = int(std::floor((z - g.origin[2]) / g.h));
+    return g.contains(i, j, k) && (*flags)[g.index(i, j, k)] != 0;
+  };
+}
+
+// docs/model.md §11 fracture: each cut takes away the part of the rock beyond a
+// plane of its joint set, `depth` of the rock's width along the plane's normal.
+void cutAlongJoints(std::vector<std::uint8_t>& inside, const GridLayout& g, const Individual& individual) {
+  for (const Individual::Cut& cut : individual.cuts) {
+    double lo = 1e300, hi = -1e300;
+    for (int z = 0; z < g.nz; ++z)
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x)
+          if (inside[g.index(x, y, z)]) {
+            const double d = dot(g.center(x, y, z), cut.normal);
+            lo = std::min(lo, d), hi = std::max(hi, d);
+          }
+    if (lo > hi) return;
+    const double plane = hi - cut.depth * (hi - lo);
+    tbb::parallel_for(0, g.nz, [&](int z) {
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x)
+          if (dot(g.center(x, y, z), cut.normal) > plane) inside[g.index(x, y, z)] = 0;
+    });
+  }
+}
+
+// Which voxel centres the individual holds, before the domain clips it.
+std::vector<std::uint8_t> individualInside(const ResolvedShape& shape, const SimParams& preset, const GridLayout& g,
+                                           const Individual& individual) {
+  const Vec3d& size = preset.grid.size;
+  const Vec3d center = shape.params.center.value_or(Vec3d{size[0] / 2, size[1] / 2, 0.0});
+  if (!individual.drawn && std::holds_alternative<MeshShape>(shape.params.kind))
+    return voxelizeMesh(placeMesh(shape.mesh, center), g);
+  const InsideTest inside = blockoutInside(shape, preset, center);
+  std::vector<std::uint8_t> flags(g.cellCount(), 0);
+  tbb::parallel_for(0, g.nz, [&](int z) {
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const Vec3d p = toBlockout(individual, preset, g.center(x, y, z));
+        flags[g.index(x, y, z)] = inside(p[0], p[1], p[2]) ? 1 : 0;
+      }
+  });
+  cutAlongJoints(flags, g, individual);
+  return flags;
+}
+
 }  // namespace
 
 VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) {
@@ -130,30 +191,10 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
   rock.layout = computeGridLayout(preset);
   const GridLayout& g = rock.layout;
   requireSimulationCells(g);
-  const Vec3d& domain = preset.grid.size;
-  const Vec3d center = shape.params.center.value_or(Vec3d{domain[0] / 2, domain[1] / 2, 0.0});
+  const Individual individual = drawIndividual(preset);
+  const Vec3d& domain = individual.domain;
   rock.material.assign(g.cellCount(), Material::Air);
-  std::vector<std::uint8_t> mesh_inside;
-  InsideTest inside;
-  if (std::holds_alternative<MeshShape>(shape.params.kind)) {
-    mesh_inside = voxelizeMesh(placeMesh(shape.mesh, center), g);
-    inside = [](double, double, double) { return false; };  // unused: the flags decide
-  } else {
-    inside = insideTest(shape, center[0], center[1], center[2], preset);
-  }
-
-  // Which voxel centres the shape holds, before the domain clips it.
-  std::vector<std::uint8_t> flags = std::move(mesh_inside);
-  if (flags.empty()) {
-    flags.assign(g.cellCount(), 0);
-    tbb::parallel_for(0, g.nz, [&](int z) {
-      for (int y = 0; y < g.ny; ++y)
-        for (int x = 0; x < g.nx; ++x) {
-          const Vec3d p = g.center(x, y, z);
-          flags[g.index(x, y, z)] = inside(p[0], p[1], p[2]) ? 1 : 0;
-        }
-    });
-  }
+  std::vector<std::uint8_t> flags = individualInside(shape, preset, g, individual);
   if (const auto& variation = preset.shape.variation; variation && variation->amplitude > 0)
     varyBoundary(flags, g, *variation, preset.seed);
 
@@ -176,7 +217,7 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
   resetRockValues(rock);
   if (preset.durability.rind) rock.rind = rindCoverage(rock, preset.durability.rind->depth);
   assignDurability(rock, DurabilityField(preset.durability.graph, preset.seed, 0),
-                   Geology(preset.durability, preset.grid.size, preset.seed));
+                   Geology(individualDurability(preset), domain, preset.seed));
   return rock;
 }
 

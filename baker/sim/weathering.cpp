@@ -15,6 +15,7 @@
 #include "sim/colluvium.h"
 #include "sim/curvature.h"
 #include "sim/durability.h"
+#include "sim/family.h"
 #include "sim/grid_layout.h"
 #include "sim/response.h"
 #include "sim/rockfall.h"
@@ -181,7 +182,7 @@ struct WeatheringSimulation::State {
         colluvium_count(rock.count(Material::Colluvium)),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
-        geology(preset.durability, preset.grid.size, preset.seed),
+        geology(individualDurability(preset), simulationDomain(preset), preset.seed),
         planned_cycles(plannedCycles(preset, rock.layout.h)),
         initial_rock(rock.count(Material::Rock)),
         rock_count(initial_rock) {
