@@ -1,4 +1,4 @@
-// How different the individuals of each catalogue family are (docs/model.md §11,
+// How different the individuals of each catalogue family are (docs/model.md §12,
 // bench/README.md "Families"): for every entry of a library, N seeds from its
 // first, each weathered at RESOLUTION, then
 //   - the aligned IoU of every pair (sim/rock_measures.h): mean and largest;
@@ -6,7 +6,7 @@
 //   - the coefficient of variation of the rock volume;
 //   - rock or colluvium voxels in the outermost ring of cells of the grid's sides, and how far
 //     the colluvium reaches beyond the rock's footprint box;
-//   - seconds weathering, and voxels of grid, for the cost per voxel.
+//   - milliseconds weathering a seed, its grid's voxels, and the cost per grid voxel.
 //   rockbake_family_variety [LIBRARY=presets/library.yaml] [RESOLUTION=48] [SEEDS=8]
 #include <algorithm>
 #include <chrono>
@@ -77,9 +77,9 @@ int main(int argc, char** argv) {
   const int seeds = argc > 3 ? std::stoi(argv[3]) : 8;
   const Library library = loadLibrary(file);
   std::printf(
-      "| preset | mean aligned IoU | largest | sd b/a | sd c/b | volume CV | on the rim | apron reach | s / seed | "
-      "Mvoxels |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "| preset | mean aligned IoU | largest | sd b/a | sd c/b | volume CV | on the rim | apron reach | ms / seed | "
+      "Mvoxels | ns / voxel |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const LibraryEntry& entry : library.entries) {
     const std::uint64_t first = entry.seeds.empty() ? loadPreset(entry.preset_file).seed : entry.seeds.front();
     std::vector<VoxelRock> rocks;
@@ -104,9 +104,9 @@ int main(int argc, char** argv) {
       for (std::size_t j = i + 1; j < rocks.size(); ++j) iou.push_back(alignedIoU(rocks[i], rocks[j]));
     double largest = 0;
     for (double x : iou) largest = std::max(largest, x);
-    std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %zu | %.2f | %.2f | %.2f |\n", entry.name.c_str(), mean(iou),
-                largest, deviation(ba), deviation(cb), deviation(volume) / mean(volume), rim, reach, seconds / seeds,
-                cells / seeds / 1e6);
+    std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %zu | %.2f | %.1f | %.2f | %.0f |\n", entry.name.c_str(),
+                mean(iou), largest, deviation(ba), deviation(cb), deviation(volume) / mean(volume), rim, reach,
+                1e3 * seconds / seeds, cells / seeds / 1e6, 1e9 * seconds / cells);
     std::fflush(stdout);
   }
 }

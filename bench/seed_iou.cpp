@@ -1,5 +1,5 @@
-// How different two seeds of each catalogue preset are: the
-// intersection over union of their weathered rocks at resolution 48, with
+// How different two seeds of each catalogue preset are: the aligned
+// intersection over union (sim/rock_measures.h) of their weathered rocks at resolution 48, with
 // each preset's geology and with it removed (the altitude graph alone), in one
 // run of one build.
 //   rockbake_seed_iou [LIBRARY=presets/library.yaml] [RESOLUTION=48]
@@ -9,6 +9,7 @@
 #include "inputs/resolve_shape.h"
 #include "preset/library.h"
 #include "preset/load_preset.h"
+#include "sim/rock_measures.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 
@@ -44,7 +45,7 @@ int main(int argc, char** argv) {
         const Preset p = loadPreset(entry.preset_file, {{}, entry.seeds[s], resolution});
         rocks[s] = weathered(geology ? p : withoutGeology(p));
       }
-      iou[geology] = rockIntersectionOverUnion(rocks[0], rocks[1]);
+      iou[geology] = alignedIoU(rocks[0], rocks[1]);
     }
     std::printf("| %s | %llu, %llu | %.3f | %.3f |\n", entry.name.c_str(), (unsigned long long)entry.seeds[0],
                 (unsigned long long)entry.seeds[1], iou[0], iou[1]);

@@ -338,7 +338,7 @@ CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
   addSeed(command, args.seed, "Override the preset's seed");
   addResolution(command, args.resolution, "Override grid.resolution");
   command->add_flag("--individual", args.individual,
-                    "Print what the seed draws from the preset's family (docs/model.md §11) instead");
+                    "Print what the seed draws from the preset's family (docs/model.md §12) instead");
   return command;
 }
 

@@ -1,5 +1,6 @@
 #include "core/voxel_rock.h"
 
+#include <stdexcept>
 #include <algorithm>
 
 namespace rockbake {
@@ -63,6 +64,8 @@ std::size_t VoxelRock::count(Material m) const {
 }
 
 double rockIntersectionOverUnion(const VoxelRock& a, const VoxelRock& b) {
+  if (a.material.size() != b.material.size())
+    throw std::invalid_argument("rockIntersectionOverUnion: the rocks lie on different layouts");
   std::size_t both = 0, either = 0;
   for (std::size_t i = 0; i < a.material.size(); ++i) {
     const bool ra = a.material[i] == Material::Rock, rb = b.material[i] == Material::Rock;

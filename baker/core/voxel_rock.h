@@ -107,7 +107,9 @@ struct VoxelRock {
 };
 
 // How much two rocks on the same layout overlap: rock voxels in both over rock
-// voxels in either (1 when neither has rock). Compares seeds of a preset.
+// voxels in either (1 when neither has rock); std::invalid_argument for two
+// layouts. Seeds of a family lie on grids of their own: sim/rock_measures.h
+// compares those.
 double rockIntersectionOverUnion(const VoxelRock& a, const VoxelRock& b);
 
 // Sets integrity to 1 and durability to 0 everywhere, with both spans sized

@@ -1,4 +1,4 @@
-// What a seed drew from its preset's family (docs/model.md §11), as asset.json,
+// What a seed drew from its preset's family (docs/model.md §12), as asset.json,
 // stats.json and `rockbake preset show` record it:
 //
 //   {"scale", "stretch": [x, y, z], "azimuth_deg", "tilt_deg", "tilt_toward_deg",

@@ -251,7 +251,7 @@ struct CollisionParams {
   bool colluvium = false;                   // also hull the colluvium, separately
 };
 
-// ---- families (docs/model.md §11) ----
+// ---- families (docs/model.md §12) ----
 // A preset's family: what a seed may change of the blockout, and by how much.
 // Each seed draws one individual from these ranges (sim/family.h); the grid is
 // then fitted to that individual. Intervals are [min, max] with min <= max.

@@ -204,7 +204,7 @@ const MapSpec<ShapeParams>& shapeSpec() {
   return spec;
 }
 
-// ---- families (docs/model.md §11) ----
+// ---- families (docs/model.md §12) ----
 
 const MapSpec<FamilyWarp>& familyWarpSpec() {
   static const Keys<FamilyWarp> k;
@@ -244,7 +244,7 @@ const MapSpec<FamilyParams>& familySpec() {
       },
       {},
       "What a seed may change of the blockout; each seed draws one individual, and the grid is fitted to it "
-      "([model.md §11](model.md)). Ranges are `[min, max]`; a range with min = max fixes the value."};
+      "([model.md §12](model.md)). Ranges are `[min, max]`; a range with min = max fixes the value."};
   return spec;
 }
 

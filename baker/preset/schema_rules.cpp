@@ -266,8 +266,9 @@ Value<std::array<Interval, 3>> axisIntervals(double lo, double hi) {
   return custom<std::array<Interval, 3>>(
       "3 × [min, max]", intervalRange(lo, hi, true) + ", for x, y, z",
       [=](const Field& f, std::array<Interval, 3>& v, const ReadContext&) {
-        if (!f.isSequence() || f.size() != 3)
-          f.fail("expected three [min, max] ranges (x, y, z), found " + describe(f.yaml()));
+        if (!f.isSequence()) f.fail("expected three [min, max] ranges (x, y, z), found " + describe(f.yaml()));
+        if (f.size() != 3)
+          f.fail("expected three [min, max] ranges (x, y, z), found " + std::to_string(f.size()));
         for (std::size_t a = 0; a < 3; ++a)
           v[a] = readInterval<double>(f.item(a), [&](const Field& x) { return x.numberIn(lo, hi, true); });
       });

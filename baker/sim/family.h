@@ -1,4 +1,4 @@
-// A family's individual (docs/model.md §11): what one seed draws from a
+// A family's individual (docs/model.md §12): what one seed draws from a
 // preset's `family:` ranges, and the grid fitted to it.
 //
 // The blockout is the shape as the preset gives it, in the preset's own

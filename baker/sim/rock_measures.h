@@ -1,4 +1,4 @@
-// How alike two weathered rocks are, and their proportions (docs/model.md §11):
+// How alike two weathered rocks are, and their proportions (docs/model.md §12):
 // the measures a family's variety is judged by, on the rock voxels alone.
 #pragma once
 

@@ -142,7 +142,7 @@ InsideTest blockoutInside(const ResolvedShape& shape, const SimParams& preset, c
   };
 }
 
-// docs/model.md §11 fracture: each cut takes away the part of the rock beyond a
+// docs/model.md §12 fracture: each cut takes away the part of the rock beyond a
 // plane of its joint set, `depth` of the rock's width along the plane's normal.
 void cutAlongJoints(std::vector<std::uint8_t>& inside, const GridLayout& g, const Individual& individual) {
   for (const Individual::Cut& cut : individual.cuts) {

@@ -128,6 +128,44 @@ const std::vector<BadInput>& badInputs() {
        {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
        2,
        {"bad.yaml:14:14: collision.max_hulls: must be a whole number from 1 to 100"}},
+      // ---- families (docs/model.md §12) ----
+      {"family_range_reversed",
+       {{"bad.yaml", text(std::string(test::kSmallPreset) + "family: {scale: [1.3, 0.8]}\n")}},
+       {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
+       2,
+       {"bad.yaml:13:17: family.scale: min 1.3 is greater than max 0.8"}},
+      {"family_negative_scale",
+       {{"bad.yaml", text(std::string(test::kSmallPreset) + "family: {scale: [-1, 2]}\n")}},
+       {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
+       2,
+       {"bad.yaml:13:18: family.scale.0: must be in (0, 100], found -1"}},
+      {"family_tilt_beyond_90",
+       {{"bad.yaml", text(std::string(test::kSmallPreset) + "family: {tilt: 95}\n")}},
+       {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
+       2,
+       {"bad.yaml:13:16: family.tilt: must be in [0, 90], found 95"}},
+      {"family_stretch_two_axes",
+       {{"bad.yaml", text(std::string(test::kSmallPreset) + "family: {stretch: [[1, 2], [1, 2]]}\n")}},
+       {"lint", "{dir}/bad.yaml"},
+       2,
+       {"bad.yaml:13:19: family.stretch: expected three [min, max] ranges (x, y, z), found 2"}},
+      {"family_fracture_without_joints",
+       {{"bad.yaml", text(std::string(test::kSmallPreset) + "family: {fracture: {cuts: [1, 2]}}\n")}},
+       {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
+       2,
+       {"bad.yaml:13:20: family.fracture: a family's fracture cuts along the preset's joint sets",
+        "add durability.joints"}},
+      {"family_with_shape_center",
+       {{"bad.yaml", text(smallWith("box: {size: [1.5, 1.5, 1.5]}", "box: {size: [1.5, 1.5, 1.5]}\n  center: [1, 1, 0]") +
+                          "family: {scale: [0.8, 1.2]}\n")}},
+       {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
+       2,
+       {"bad.yaml:14:9: family: a family fits the grid", "remove shape.center"}},
+      {"family_individual_without_family",
+       {{"bad.yaml", text(test::kSmallPreset)}},
+       {"preset", "show", "{dir}/bad.yaml", "--individual"},
+       2,
+       {"family: the preset has no family"}},
       {"collision_naming_ue5",
        {{"bad.yaml", text(std::string(test::kSmallPreset) + "collision: {naming: ue5}\n")}},
        {"bake", "{dir}/bad.yaml", "-o", "{out}", "--no-render"},
@@ -529,9 +567,11 @@ TEST(BadInput, OutOfMemoryMidRunInALibraryLeavesNoHalfWrittenAsset) {
   // Without detail the preset's subdivision level is spent at any resolution
   // (docs/meshes.md), so the mesh stage outgrows the limit; with the house
   // detail, 200 voxels across are fine enough to spend none, and it fits.
+  // The blockout as given (no family), whose grid the figure is of.
   const auto result = runWithMemoryLimit(
       300 << 10, {"library", (dir.path() / "lib.yaml").string(), "--set", "shape.variation.amplitude=0", "--set",
-                  "mesh.detail=null", "--resolution", "200", "--no-render", "-o", out.string()});
+                  "mesh.detail=null", "--set", "family=null", "--resolution", "200", "--no-render", "-o",
+                  out.string()});
   EXPECT_EQ(result.exit_status, 1) << result.output;
   EXPECT_NE(result.output.find("out of memory: lower grid.resolution (200 needs about 42 MiB"), std::string::npos)
       << result.output;

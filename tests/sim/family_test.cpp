@@ -1,4 +1,4 @@
-// Families (docs/model.md §11): the aligned-IoU measure on shapes worked out by
+// Families (docs/model.md §12): the aligned-IoU measure on shapes worked out by
 // hand, the draw's determinism, and the catalogue families keeping each kind
 // itself at every seed.
 #include <gtest/gtest.h>

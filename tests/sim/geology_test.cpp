@@ -12,6 +12,7 @@
 #include "preset/library.h"
 #include "preset/load_preset.h"
 #include "sim/durability.h"
+#include "sim/rock_measures.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 #include "test_support.h"
@@ -32,27 +33,9 @@ VoxelRock weathered(const Preset& p) {
   return weatherRock(initialRock(p), p).rock;
 }
 
-// Height (world units) of the highest rock voxel's top, and the area of the
-// rock's footprint (columns holding rock).
-struct Character {
-  double height = 0, footprint = 0;
-};
-Character character(const VoxelRock& rock) {
-  const GridLayout& g = rock.layout;
-  Character c;
-  std::vector<std::uint8_t> column(std::size_t(g.nx) * std::size_t(g.ny), 0);
-  for (int z = 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x)
-        if (isRock(rock, x, y, z)) {
-          c.height = std::max(c.height, g.origin[2] + (z + 1) * g.h);
-          column[std::size_t(x) + std::size_t(g.nx) * std::size_t(y)] = 1;
-        }
-  c.footprint = double(std::count(column.begin(), column.end(), 1)) * g.h * g.h;
-  return c;
-}
-
-TEST(Geology, EverySeedOfTheCatalogueIsADifferentRockOfTheSameKind) {
+// Whether each stays its kind at every seed is tests/sim/family_test.cpp's
+// (docs/model.md §12): sizes and proportions now differ by design.
+TEST(Geology, EverySeedOfTheCatalogueIsADifferentRock) {
   const fs::path file = test::sourceDir() / "presets" / "library.yaml";
   const Library library = loadLibrary(file);
   ASSERT_GE(library.entries.size(), 10u);
@@ -61,13 +44,9 @@ TEST(Geology, EverySeedOfTheCatalogueIsADifferentRockOfTheSameKind) {
     std::vector<VoxelRock> rocks;
     for (std::size_t s = 0; s < 2; ++s)
       rocks.push_back(weathered(loadPreset(entry.preset_file, {{}, entry.seeds[s], 48})));
-    const double iou = rockIntersectionOverUnion(rocks[0], rocks[1]);
-    const Character a = character(rocks[0]), b = character(rocks[1]);
-    RecordProperty(entry.name + "_iou", std::to_string(iou));
-    EXPECT_LE(iou, 0.85) << entry.name << ": seeds " << entry.seeds[0] << " and " << entry.seeds[1];
-    EXPECT_NEAR(a.height / b.height, 1.0, 0.2) << entry.name << ": heights " << a.height << ", " << b.height;
-    EXPECT_NEAR(a.footprint / b.footprint, 1.0, 0.2)
-        << entry.name << ": footprints " << a.footprint << ", " << b.footprint;
+    const double iou = alignedIoU(rocks[0], rocks[1]);
+    RecordProperty(entry.name + "_aligned_iou", std::to_string(iou));
+    EXPECT_LE(iou, 0.7) << entry.name << ": seeds " << entry.seeds[0] << " and " << entry.seeds[1];
     // Same seed, same rock: the initial rock (shape and durability) is rebuilt identically.
     const Preset again = loadPreset(entry.preset_file, {{}, entry.seeds[0], 48});
     const VoxelRock first = initialRock(again), second = initialRock(again);
