@@ -1,0 +1,69 @@
+// A family through the real executable (docs/model.md §12): the draw recorded
+// in asset.json and stats.json as `preset show --individual` prints it, and
+// the same bytes at one and two threads.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+namespace fs = std::filesystem;
+
+// kSmallPreset with a joint set and a family that uses every part of the draw.
+std::string familyPreset() {
+  return std::string(test::kSmallPreset) +
+         "durability:\n  joints:\n    - {strike: 30, dip: 80, spacing: 0.6, width: 0.05, factor: 0.5}\n"
+         "family: {scale: [0.8, 1.25], stretch: [[0.7, 1.4], [0.7, 1.4], [0.8, 1.2]], tilt: 10,\n"
+         "         warp: {bend: 0.2, taper: 0.3, twist: 30}, fracture: {cuts: [1, 2], depth: [0.1, 0.3]}}\n"
+         "texture: {size: 256}\n";
+}
+
+TEST(FamilyBake, TheDrawIsRecordedAsPresetShowPrintsIt) {
+  test::TempDir dir;
+  const fs::path preset = dir.path() / "fam.yaml";
+  test::writeText(preset, familyPreset());
+  for (const char* seed : {"4", "5"}) {
+    const auto shown = test::runRockbake({"preset", "show", preset.string(), "--seed", seed, "--individual"});
+    ASSERT_EQ(shown.exit_status, 0) << shown.output;
+    const auto baked =
+        test::runRockbake({"bake", preset.string(), "--seed", seed, "--no-render", "-o", (dir.path() / seed).string()});
+    ASSERT_EQ(baked.exit_status, 0) << baked.output;
+    const auto asset = nlohmann::json::parse(test::readBytes(dir.path() / seed / "small" / "asset.json"));
+    const auto stats = nlohmann::json::parse(test::readBytes(dir.path() / seed / "small" / "stats.json"));
+    const auto individual = nlohmann::json::parse(shown.output);
+    EXPECT_EQ(asset["individual"], individual) << seed;
+    EXPECT_EQ(stats["individual"], individual) << seed;
+    EXPECT_GE(individual["cuts"].size(), 1u);
+  }
+  EXPECT_NE(test::readBytes(dir.path() / "4" / "small" / "asset.json"),
+            test::readBytes(dir.path() / "5" / "small" / "asset.json"));
+}
+
+TEST(FamilyBake, TheSameBytesAtOneAndTwoThreads) {
+  test::TempDir dir;
+  const fs::path preset = dir.path() / "fam.yaml";
+  test::writeText(preset, familyPreset());
+  for (const char* threads : {"1", "2"}) {
+    const auto result = test::runRockbake(
+        {"bake", preset.string(), "--threads", threads, "--no-render", "-o", (dir.path() / threads).string()});
+    ASSERT_EQ(result.exit_status, 0) << result.output;
+  }
+  std::size_t compared = 0;
+  const fs::path one = dir.path() / "1" / "small", two = dir.path() / "2" / "small";
+  for (const auto& entry : fs::recursive_directory_iterator(one)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), one);
+    if (relative == "stats.json" || relative == "manifest.json") continue;  // timings
+    EXPECT_EQ(test::readBytes(entry.path()), test::readBytes(two / relative)) << relative;
+    ++compared;
+  }
+  EXPECT_GE(compared, 10u);  // meshes, LODs, maps, rock.vdb, asset.json
+}
+
+}  // namespace
+}  // namespace rockbake
