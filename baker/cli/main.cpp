@@ -110,8 +110,7 @@ struct StageSwitches {
 void addStageSwitches(CLI::App* command, StageSwitches& switches) {
   command->add_flag("--no-mesh", switches.no_mesh, "Skip meshing (and so rendering)");
   command->add_flag("--no-render", switches.no_render, "Skip rendering");
-  command->add_flag("--no-textures", switches.no_textures,
-                    "Skip the texture set: the preset's texture: block is dropped (meshes with vertex colours only)");
+  command->add_flag("--no-textures", switches.no_textures, "Skip the texture set (meshes with vertex colours only)");
 }
 
 void addCheckpointEvery(CLI::App* command, double& every, const std::string& help) {
@@ -158,7 +157,6 @@ LoadedPresets loadPresetsToBake(const BakeArgs& args, const rockbake::PresetOver
   for (const auto& file : args.presets) {
     const auto start = std::chrono::steady_clock::now();
     loaded.presets.push_back(rockbake::loadPreset(file, overrides));
-    if (args.switches.no_textures) loaded.presets.back().texture.reset();
     loaded.shapes.push_back(rockbake::readInputs(loaded.presets.back()));
     loaded.load_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -189,6 +187,7 @@ int runBake(const BakeArgs& args) {
     options.out_dir = args.out_dir;
     options.mesh = !args.switches.no_mesh;
     options.render = !args.switches.no_render;
+    options.textures = !args.switches.no_textures;
     options.load_seconds = loaded.load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
@@ -238,11 +237,11 @@ int runResume(const ResumeArgs& args) {
   const auto thread_limit = limitThreads(args.threads);
   const rockbake::Checkpoint checkpoint = rockbake::readCheckpoint(args.checkpoint);
   rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
-  if (args.switches.no_textures) plan.preset.texture.reset();
   rockbake::BakeOptions options;
   options.out_dir = args.out_dir;
   options.mesh = !args.switches.no_mesh;
   options.render = !args.switches.no_render;
+  options.textures = !args.switches.no_textures;
   options.render_threads = args.threads;
   options.manifest.overrides = plan.overrides;
   options.checkpoint_every = args.checkpoint_every;

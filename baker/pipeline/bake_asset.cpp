@@ -40,8 +40,10 @@ using json = nlohmann::ordered_json;
 // What every phase of one bake shares: what it bakes, the staging folder it writes into (taken, with the
 // asset's lock and the check that OUT/<name> may be replaced, before any work), the clock and the timings.
 struct Bake {
-  Bake(const Preset& preset, const BakeOptions& options)
-      : preset(preset),
+  Bake(const Preset& given, const BakeOptions& options)
+      : given(given),
+        baked(presetAsBaked(given, options)),
+        preset(baked),
         options(options),
         asset_dir(options.out_dir / preset.name),
         staging(asset_dir, outOfMemoryMessage(preset), options.lock),
@@ -57,6 +59,8 @@ struct Bake {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
   }
 
+  const Preset& given;  // as the caller gave it: what checkpoints record
+  const Preset baked;   // presetAsBaked
   const Preset& preset;
   const BakeOptions& options;
   const fs::path asset_dir;
@@ -153,7 +157,7 @@ class CheckpointWriter {
   CheckpointWriter(const Bake& bake, const SimulationStart& start)
       : bake_(bake), every_(bake.options.checkpoint_every) {
     if (every_ <= 0.0) return;
-    const Preset& preset = bake.preset;
+    const Preset& preset = bake.given;
     const Checkpoint* resume = bake.options.resume;
     checkpoint_.preset_file = fs::absolute(preset.file);
     checkpoint_.preset_text = resume ? resume->preset_text : readTextFile(preset.file);
@@ -399,6 +403,12 @@ BakeSummary commit(Bake& bake, const Weathered& weathered) {
 }
 
 }  // namespace
+
+Preset presetAsBaked(const Preset& preset, const BakeOptions& options) {
+  Preset baked = preset;
+  if (!options.textures) baked.texture.reset();
+  return baked;
+}
 
 BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   return bakeAsset(preset, readInputs(preset), options);

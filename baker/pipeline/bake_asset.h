@@ -33,6 +33,7 @@ struct BakeOptions {
   std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
   bool mesh = true;                       // --no-mesh turns the mesh stage off
   bool render = true;                     // --no-render turns the render stage off (needs mesh)
+  bool textures = true;                   // --no-textures turns the texture set off (presetAsBaked)
   int render_threads = 0;                 // POV-Ray's threads; 0: all cores
   double load_seconds = 0.0;              // time the caller spent loading the preset
   ManifestInputs manifest;                // what manifest.json records beyond the preset
@@ -52,6 +53,12 @@ struct BakeOptions {
   // failure record); nullptr: the bake takes it.
   const AssetLock* lock = nullptr;
 };
+
+// The preset as a bake with these options makes it: without its texture: block
+// when options.textures is off, so the input hash, the manifest and stats.json
+// say what was baked. Checkpoints keep the preset itself, so that `resume`
+// with or without --no-textures reads it back the same.
+Preset presetAsBaked(const Preset& preset, const BakeOptions& options);
 
 class BakeCancelled : public std::runtime_error {
  public:

@@ -122,16 +122,16 @@ JobOutcome bakeJob(const LibraryRun& run, std::size_t i) {
     tidyAssetFolder(*lock);
     Preset preset = loadPreset(run.library.entries[job.entry].preset_file, inputs.overrides);
     out_of_memory = outOfMemoryMessage(preset);
-    preset.name = job.name;                             // the asset is the job: OUT/<job>/, and the name in its headers
-    if (!run.options.textures) preset.texture.reset();  // and so in the input hash: a textured bake is not it
+    preset.name = job.name;  // the asset is the job: OUT/<job>/, and the name in its headers
     const double load_seconds = seconds();
-    if (isCompleteAsset(asset_dir, bakeInputHash(preset, run.options.mesh, run.options.render, run.base_dir))) {
+    BakeOptions bake;
+    bake.out_dir = run.options.out_dir;
+    bake.mesh = run.options.mesh;
+    bake.render = run.options.render;
+    bake.textures = run.options.textures;
+    if (isCompleteAsset(asset_dir, bakeInputHash(presetAsBaked(preset, bake), bake.mesh, bake.render, run.base_dir))) {
       outcome.status = JobStatus::Skipped;
     } else {
-      BakeOptions bake;
-      bake.out_dir = run.options.out_dir;
-      bake.mesh = run.options.mesh;
-      bake.render = run.options.render;
       bake.render_threads = run.render_threads;
       bake.load_seconds = load_seconds;
       bake.manifest = inputs;

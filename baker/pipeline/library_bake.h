@@ -60,7 +60,7 @@ struct LibraryBakeOptions {
   std::optional<int> resolution;  // --resolution
   bool mesh = true;
   bool render = true;
-  bool textures = true;  // false (--no-textures): every job's preset without its texture: block
+  bool textures = true;  // false (--no-textures): no texture sets (BakeOptions::textures)
   const std::atomic<bool>* cancel = nullptr;
   LibraryObserver observer;
 };
