@@ -414,8 +414,7 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   return bakeAsset(preset, readInputs(preset), options);
 }
 
-// The recipe. A phase to add (texture maps, collision hulls, a turntable movie) is one more line here, a
-// function above, and its seconds in BakeTimings.
+// The recipe. A phase to add is one more line here, a function above, and its seconds in BakeTimings.
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   Bake bake(preset, options);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));

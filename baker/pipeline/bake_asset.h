@@ -1,10 +1,11 @@
 // BakeAsset: the recipe. One validated preset in, one asset folder out, as a
 // sequence of phases, each a function of the one before (bake_asset.cpp):
 //   start the simulation (the initial rock, or a checkpoint's state)
-//   ─▶ simulate (cycles, checkpoints) ─▶ meshes and exports, rock.vdb
-//   (pipeline/bake_meshes.h; rock_sdf = the meshes' smoothed field; with
-//   --no-mesh, the occupancy) ─▶ render (EXR + PNG preview) ─▶ describe
-//   (asset.json) ─▶ stats.json ─▶ manifest.json (last) ─▶ commit.
+//   ─▶ simulate (cycles, checkpoints) ─▶ meshes and collision hulls, side by
+//   side (pipeline/bake_meshes.h, bake_collision.h) ─▶ the texture set ─▶
+//   exports and rock.vdb (rock_sdf = the meshes' smoothed field; with
+//   --no-mesh, the occupancy) ─▶ render (EXR + PNG preview, turntable) ─▶
+//   describe (asset.json) ─▶ stats.json ─▶ manifest.json (last) ─▶ commit.
 // The bake writes into a hidden folder beside OUT/<name> and commits it in
 // one step, replacing the previous asset only when that is an asset folder
 // rockbake wrote (pipeline/asset_folder.h): a bake that fails or is
