@@ -284,35 +284,88 @@ int runRender(const RenderArgs& args) {
 
 struct LintArgs {
   std::vector<std::string> presets;
+  std::vector<std::string> sets;
 };
 
 CLI::App* declareLint(CLI::App& app, LintArgs& args) {
-  CLI::App* command =
-      app.add_subcommand("lint", "Check presets and list every problem (file:line:col: key.path: problem)");
-  command->add_option("presets", args.presets, "Preset YAML files")->required();
+  CLI::App* command = app.add_subcommand(
+      "lint", "Check presets, the bases they extend and library files; list every problem (file:line:col: key.path)");
+  command->add_option("presets", args.presets, "Preset, base or library YAML files")->required();
+  addSets(command, args.sets, "Override a key of every preset before checking it (repeatable)");
   return command;
 }
 
-// Lists every problem of every preset, one per line ("file:line:col: key.path: problem (hint)"), and
-// "FILE: ok" for each clean one.
+// A preset's problems, with the files it names and its grid against this machine's memory, as a bake checks them.
+std::vector<rockbake::InputError> lintOnePreset(const std::filesystem::path& file,
+                                                const rockbake::PresetOverrides& overrides) {
+  std::vector<rockbake::InputError> found = rockbake::lintPreset(file, overrides);
+  if (found.empty()) try {
+      rockbake::readInputs(rockbake::loadPreset(file, overrides));
+    } catch (const rockbake::InputError& e) {
+      found.push_back(e);
+    }
+  return found;
+}
+
+// A library's problems: the file's own, then every job's preset with the job's wedge (each preset and
+// wedge once).
+std::vector<rockbake::InputError> lintLibrary(const std::filesystem::path& file, const std::vector<std::string>& sets,
+                                              std::size_t& jobs) {
+  std::vector<rockbake::InputError> found;
+  try {
+    const rockbake::Library library = rockbake::loadLibrary(file);
+    jobs = rockbake::expandLibrary(library).size();
+    for (const auto& entry : library.entries) {
+      std::vector<std::optional<rockbake::LibraryWedge>> wedges(entry.wedges.begin(), entry.wedges.end());
+      if (wedges.empty()) wedges.push_back(std::nullopt);
+      for (const auto& wedge : wedges) {
+        rockbake::PresetOverrides overrides{sets, std::nullopt, std::nullopt};
+        if (wedge) {
+          overrides.set_origins.assign(sets.size(), "");
+          overrides.sets.insert(overrides.sets.end(), wedge->sets.begin(), wedge->sets.end());
+          overrides.set_origins.insert(overrides.set_origins.end(), wedge->set_origins.begin(),
+                                       wedge->set_origins.end());
+        }
+        for (auto& problem : lintOnePreset(entry.preset_file, overrides)) found.push_back(std::move(problem));
+      }
+    }
+  } catch (const rockbake::InputError& e) {
+    found.push_back(e);
+  }
+  return found;
+}
+
+// Lists every problem of every file, one per line ("file:line:col: key.path: problem (hint)"), and
+// "FILE: ok" for each clean one (saying what it is when it is a base or a library).
 int runLint(const LintArgs& args) {
   std::size_t problems = 0, failed = 0;
+  const rockbake::PresetOverrides overrides{args.sets, std::nullopt, std::nullopt};
   for (const auto& file : args.presets) {
-    std::vector<rockbake::InputError> found = rockbake::lintPreset(file);
-    // The files the preset names, and the grid against this machine's memory, as a bake checks them.
-    if (found.empty()) try {
-        rockbake::readInputs(rockbake::loadPreset(file));
-      } catch (const rockbake::InputError& e) {
-        found.push_back(e);
+    std::vector<rockbake::InputError> found;
+    std::string what;
+    switch (rockbake::presetFileKind(file)) {
+      case rockbake::PresetFileKind::Preset:
+        found = lintOnePreset(file, overrides);
+        break;
+      case rockbake::PresetFileKind::Base:
+        found = rockbake::lintBase(file, overrides);
+        what = " (a base: no name, shape or time of its own; presets extend it)";
+        break;
+      case rockbake::PresetFileKind::Library: {
+        std::size_t jobs = 0;
+        found = lintLibrary(file, args.sets, jobs);
+        what = fmt::format(" (a library of {} job{}, every preset checked)", jobs, jobs == 1 ? "" : "s");
+        break;
       }
+    }
     for (const auto& problem : found) std::cout << problem.what() << '\n';
-    if (found.empty()) std::cout << file << ": ok\n";
+    if (found.empty()) std::cout << file << ": ok" << what << "\n";
     problems += found.size();
     failed += found.empty() ? 0 : 1;
   }
   std::cout.flush();
   if (failed == 0) return kExitOk;
-  spdlog::error("{} problem{} in {} of {} preset{}", problems, problems == 1 ? "" : "s", failed, args.presets.size(),
+  spdlog::error("{} problem{} in {} of {} file{}", problems, problems == 1 ? "" : "s", failed, args.presets.size(),
                 args.presets.size() == 1 ? "" : "s");
   return kExitBadInput;
 }

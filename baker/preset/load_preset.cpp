@@ -20,6 +20,9 @@ PresetTree readPresetTree(const std::string& yaml_text, const std::filesystem::p
   PresetTree tree;
   const std::string name = file.string();
   tree.root = loadYamlDocument(yaml_text, name, "a preset");
+  if (tree.root.IsSequence())
+    throw InputError({name, 1, 1}, "", "this is a library file (a list of presets × seeds × wedges), not a preset",
+                     "bake it with `rockbake library " + name + "`; `rockbake lint` checks it as a library");
   if (!tree.root.IsMap()) throw InputError({name, 1, 1}, "", "a preset must be a YAML map (key: value, ...)");
   resolveExtends(tree.root, name, std::filesystem::absolute(file).lexically_normal(), tree.files, tree.source.origins);
   applyOverrides(tree.root, overrides, tree.source);
@@ -47,6 +50,19 @@ Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& fi
 
 Preset loadPreset(const std::filesystem::path& file, const PresetOverrides& overrides) {
   return parsePreset(readPresetFile(file), file, overrides);
+}
+
+PresetFileKind presetFileKind(const std::filesystem::path& file) {
+  try {
+    const YAML::Node root = loadYamlDocument(readPresetFile(file), file.string(), "a preset");
+    if (root.IsSequence()) return PresetFileKind::Library;
+    if (!root.IsMap()) return PresetFileKind::Preset;
+    for (const char* own : {"name", "shape", "time", "cycles"})
+      if (root[own].IsDefined()) return PresetFileKind::Preset;
+    return PresetFileKind::Base;
+  } catch (const InputError&) {
+    return PresetFileKind::Preset;  // unreadable: linting it as a preset says why
+  }
 }
 
 }  // namespace rockbake

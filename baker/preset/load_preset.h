@@ -55,4 +55,17 @@ Preset parsePreset(const std::string& yaml_text, const std::filesystem::path& fi
 // when the preset is valid, that is when loadPreset would not throw.
 std::vector<InputError> lintPreset(const std::filesystem::path& file, const PresetOverrides& overrides = {});
 
+// What a YAML file beside the presets is, for `rockbake lint`: a preset; a
+// base (a map with none of `name`, `shape`, `time`, `cycles`: a house style
+// that presets extend, not baked by itself); or a library (a list of presets ×
+// seeds × wedges, preset/library.h). Preset when the file cannot be read as
+// YAML, so that linting it says why.
+enum class PresetFileKind { Preset, Base, Library };
+PresetFileKind presetFileKind(const std::filesystem::path& file);
+
+// A base's problems: the base merged under a minimal preset that extends it
+// (a name, a box and a time of its own), so that every key the base gives is
+// checked and located in the base.
+std::vector<InputError> lintBase(const std::filesystem::path& file, const PresetOverrides& overrides = {});
+
 }  // namespace rockbake

@@ -376,22 +376,65 @@ TEST(PresetLint, CleanPresetsSayOkAndExitZero) {
   EXPECT_NE(mixed.output.find((dir.path() / "missing.yaml").string() + ": cannot read the preset file"),
             std::string::npos)
       << mixed.output;
-  EXPECT_NE(mixed.output.find("2 problems in 2 of 3 presets"), std::string::npos) << mixed.output;
+  EXPECT_NE(mixed.output.find("2 problems in 2 of 3 files"), std::string::npos) << mixed.output;
 }
 
-TEST(PresetLint, EveryShippedPresetIsClean) {
+// `rockbake lint presets/*.yaml`, the first thing anyone types: base.yaml is linted as a base (a
+// partial house style other presets extend) and library.yaml as a library, each saying so.
+TEST(PresetLint, EveryShippedFileIsClean) {
   std::vector<std::string> args = {"lint"};
   for (const auto& entry : fs::directory_iterator(test::sourceDir() / "presets"))
-    // base.yaml is a partial house style other presets extend, library.yaml the catalogue's library
-    // file: neither is a preset of its own.
-    if (entry.path().extension() == ".yaml" && entry.path().filename() != "base.yaml" &&
-        entry.path().filename() != "library.yaml")
-      args.push_back(entry.path().string());
+    if (entry.path().extension() == ".yaml") args.push_back(entry.path().string());
   ASSERT_GE(args.size(), 2u);
   const auto result = runRockbake(args);
   EXPECT_EQ(result.exit_status, 0) << result.output;
-  for (std::size_t i = 1; i < args.size(); ++i)
-    EXPECT_NE(result.output.find(args[i] + ": ok\n"), std::string::npos) << args[i] << "\n" << result.output;
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string name = fs::path(args[i]).filename().string();
+    const std::string ok = args[i] + (name == "base.yaml"      ? ": ok (a base"
+                                      : name == "library.yaml" ? ": ok (a library of 33 jobs"
+                                                               : ": ok\n");
+    EXPECT_NE(result.output.find(ok), std::string::npos) << args[i] << "\n" << result.output;
+  }
+}
+
+TEST(PresetLint, ABasesProblemsAreFoundInTheBase) {
+  TempDir dir;
+  writeText(dir.path() / "house.yaml", "rockbake: 1\ncolluvium: {yeild: 0.5}\nmesh: {subdivision: 9}\n");
+  const auto result = runRockbake({"lint", (dir.path() / "house.yaml").string()});
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find("house.yaml:2:13: colluvium.yeild: unknown key 'yeild'; did you mean 'yield'?"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("house.yaml:3:21: mesh.subdivision:"), std::string::npos) << result.output;
+}
+
+TEST(PresetLint, ALibraryIsLintedWithEveryJobsPresetAndWedge) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", test::kSmallPreset);
+  writeText(dir.path() / "lib.yaml",
+            "- preset: small.yaml\n  seeds: [1, 2]\n  wedges:\n    - {name: ok}\n"
+            "    - {name: wild, set: {colluvium.yield: 3}}\n");
+  const auto result = runRockbake({"lint", (dir.path() / "lib.yaml").string()});
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find("lib.yaml:5:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("colluvium.yield: must be in [0, 1]"), std::string::npos) << result.output;
+  // --set reaches every preset, and the library's own jobs are counted.
+  writeText(dir.path() / "lib.yaml", "- preset: small.yaml\n  seeds: [1, 2]\n");
+  const auto clean = runRockbake({"lint", (dir.path() / "lib.yaml").string()});
+  EXPECT_EQ(clean.exit_status, 0) << clean.output;
+  EXPECT_NE(clean.output.find("lib.yaml: ok (a library of 2 jobs"), std::string::npos) << clean.output;
+  const auto set = runRockbake({"lint", (dir.path() / "lib.yaml").string(), "--set", "time=-1"});
+  EXPECT_EQ(set.exit_status, 2) << set.output;
+  EXPECT_NE(set.output.find("--set time=-1: time:"), std::string::npos) << set.output;
+}
+
+TEST(PresetLint, BakingALibraryFileSaysHowToBakeOne) {
+  const auto result = runRockbake({"bake", (test::sourceDir() / "presets" / "library.yaml").string(), "-o",
+                                   (fs::temp_directory_path() / "rockbake-never-written").string()});
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find("library.yaml:1:1: this is a library file"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("rockbake library"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(fs::temp_directory_path() / "rockbake-never-written"));
 }
 
 // ---- preset show ----
