@@ -258,6 +258,7 @@ int runResume(const ResumeArgs& args) {
 struct RenderArgs {
   std::string asset_dir;
   std::string template_name;
+  std::string output;
   int threads = 0;
 };
 
@@ -267,6 +268,9 @@ CLI::App* declareRender(CLI::App& app, RenderArgs& args) {
       ->required()
       ->check(CLI::ExistingDirectory);
   command->add_option("--template", args.template_name, "A template in render_templates/ (default: the preset's)");
+  command->add_option("--output", args.output,
+                      "The still's file name, NAME.exr and NAME.png (default: render with the preset's template, "
+                      "render_<template> with another)");
   addThreads(command, args.threads, "POV-Ray threads (default: all cores)");
   return command;
 }
@@ -275,7 +279,7 @@ int runRender(const RenderArgs& args) {
   if (!args.template_name.empty())
     if (const auto problem = rockbake::renderTemplateProblem(args.template_name, rockbake::renderTemplatesDir()))
       throw rockbake::InputError({"--template"}, "", *problem, "give the name of a template, never a path");
-  const auto out = rockbake::rerenderAssetFolder({args.asset_dir, args.template_name, args.threads});
+  const auto out = rockbake::rerenderAssetFolder({args.asset_dir, args.template_name, args.output, args.threads});
   spdlog::info("rendered {} in {:.1f} s", out.render_png.string(), out.seconds_total);
   return kExitOk;
 }

@@ -155,7 +155,8 @@ AssetFolderSnapshot snapshotAssetFolder(const fs::path& asset_dir) {
   return {asset_dir, scanFolder(asset_dir)};
 }
 
-void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name) {
+void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name,
+                           const std::string& still_name) {
   const fs::path file = before.dir / kManifestFile;
   if (!fs::is_regular_file(file)) return;
   ordered_json manifest;
@@ -168,7 +169,7 @@ void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string&
   for (auto& [path, output] : writtenSince(before)) outputs[path] = std::move(output);
   manifest["outputs"] = ordered_json::array();
   for (auto& [path, output] : outputs) manifest["outputs"].push_back(std::move(output));
-  manifest["rerender"] = {{"template", template_name}};
+  manifest["rerender"] = {{"template", template_name}, {"still", still_name}};
   manifest["timings"]["rerendered_at"] = utcNow();
   writeFileAtomically(file, manifest.dump(2) + "\n");
 }

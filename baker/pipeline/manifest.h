@@ -103,7 +103,8 @@ AssetFolderSnapshot snapshotAssetFolder(const std::filesystem::path& asset_dir);
 // (new files are added), and "rerender" records the template, so the manifest
 // keeps describing the folder and a library re-run still finds it complete.
 // A folder without a manifest is left without one.
-void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name);
+void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string& template_name,
+                           const std::string& still_name = "render");
 
 // True when asset_dir holds a manifest.json that parses, whose input hash is
 // `input_hash`, and whose every listed output exists with its listed size.

@@ -35,6 +35,13 @@ std::string recordedFingerprint(const fs::path& dir, const nlohmann::json& resol
   return sha256Hex(resolved.dump());
 }
 
+bool isOutputName(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  for (const char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-')) return false;
+  return true;
+}
+
 }  // namespace
 
 RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
@@ -65,13 +72,22 @@ RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
     throw InputError({stats_file.string()}, "preset", std::string("unreadable: ") + e.what(), "bake the asset again");
   }
   request.threads = options.threads;
+  const std::string& own = request.params.template_name;
+  request.still_name = !options.output.empty() ? options.output
+                       : options.template_name.empty() || options.template_name == own
+                           ? "render"
+                           : "render_" + options.template_name;
+  if (!isOutputName(request.still_name))
+    throw InputError({"--output"}, "", "'" + request.still_name + "' is not a file name of a-z, 0-9, '_' and '-'",
+                     "give a name such as render_debug");
   // A bake of the same asset (which would exchange the folder under the renders) waits for this one.
   fs::path asset = fs::absolute(dir).lexically_normal();
   if (asset.filename().empty()) asset = asset.parent_path();  // "out/goblin/"
   const AssetLock lock(asset);
   const AssetFolderSnapshot before = snapshotAssetFolder(dir);
   RenderOutputs out = rerenderAsset(request);
-  updateManifestOutputs(before, options.template_name.empty() ? request.params.template_name : options.template_name);
+  updateManifestOutputs(before, options.template_name.empty() ? request.params.template_name : options.template_name,
+                        request.still_name);
   return out;
 }
 

@@ -14,12 +14,15 @@ namespace rockbake {
 struct RerenderOptions {
   std::filesystem::path asset_dir;
   std::string template_name;  // empty: the template the asset was baked with
-  int threads = 0;            // POV-Ray's threads; 0: all cores
+  // The still's file name (without .exr / .png), [a-z0-9_-]+; empty: `render` with the asset's own
+  // template, `render_<template>` with another, so that a debug view never replaces the bake's render.
+  std::string output;
+  int threads = 0;  // POV-Ray's threads; 0: all cores
 };
 
 // Throws InputError when the folder is not a rendered asset (no stats.json or
 // rock_mesh.inc), its stats.json does not parse, or another live process
-// holds the asset's lock (pipeline/asset_folder.h).
+// holds the asset's lock (pipeline/asset_folder.h), or `output` is not a name.
 RenderOutputs rerenderAssetFolder(const RerenderOptions& options);
 
 }  // namespace rockbake

@@ -85,14 +85,16 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   const int w = r.params.width, h = r.params.height;
 
   RenderOutputs out;
-  out.scene = r.asset_dir / "scene.pov";
+  const bool own_still = r.still_name == "render";
+  const std::string scene_name = own_still ? "scene.pov" : r.still_name + ".pov";
+  out.scene = r.asset_dir / scene_name;
   out.mesh_include = r.asset_dir / "rock_mesh.inc";
-  out.render_exr = r.asset_dir / "render.exr";
-  out.render_png = r.asset_dir / "render.png";
+  out.render_exr = r.asset_dir / (r.still_name + ".exr");
+  out.render_png = r.asset_dir / (r.still_name + ".png");
 
   const auto still_template = findTemplate(template_dir, name);
   std::filesystem::path turntable_template;
-  if (r.params.turntable_frames > 0) turntable_template = findTemplate(template_dir, "turntable");
+  if (r.params.turntable_frames > 0 && own_still) turntable_template = findTemplate(template_dir, "turntable");
 
   std::filesystem::create_directories(r.asset_dir);
   AssetFrame meshes;
@@ -110,13 +112,13 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   // One POV-Ray thread per image: with more, POV-Ray's adaptive antialiasing compares pixels
   // across blocks that other threads may or may not have rendered yet, so an image changes
   // from run to run on a loaded machine (docs/rendering.md). Turntable frames use the cores.
-  renderOne(r, 1, "scene.pov", "render.exr", metadataFor(r, 0, home), w, h);
+  renderOne(r, 1, scene_name, r.still_name + ".exr", metadataFor(r, 0, home), w, h);
   out.seconds_still = since(t);
   t = Clock::now();
   exrToPng(out.render_exr, out.render_png, ocio);
   out.seconds_post += since(t);
 
-  const int frames = r.params.turntable_frames;
+  const int frames = own_still ? r.params.turntable_frames : 0;
   if (frames > 0) {
     // The turntable frames render at the still's size; the contact sheet is
     // a grid of them.

@@ -21,7 +21,10 @@ struct RenderRequest {
   RenderParams params;                 // the preset's render: block
   std::filesystem::path template_dir;  // empty: defaultRenderTemplatesDir()
   std::string template_override;       // `--template NAME`; empty: params.template_name
-  std::filesystem::path ocio_config;   // empty: <template_dir>/ocio/config.ocio
+  // The still's files: <still_name>.exr and .png (and its scene, scene.pov for "render", else
+  // <still_name>.pov). Only the bake's own still, "render", brings the turntable with it.
+  std::string still_name = "render";
+  std::filesystem::path ocio_config;  // empty: <template_dir>/ocio/config.ocio
   std::string preset_name;
   std::uint64_t seed = 0;
   std::string preset_hash;

@@ -236,10 +236,20 @@ TEST(Cli, BakeRendersAndRenderReRendersTheAssetFolder) {
   for (const char* stage : {"mesh_extract", "mesh_subdivide", "export", "render"})
     EXPECT_GT(stats["stages"][stage].get<double>(), 0.0) << stage;
 
+  // Another template renders beside the bake's own still, never over it: render_<template> by default,
+  // or the name --output gives; a name that is not a file name is refused.
   const std::string still = readBytes(out / "small" / "render.exr");
   const auto again = runRockbake({"render", (out / "small").string(), "--template", "debug"});
   ASSERT_EQ(again.exit_status, 0) << again.output;
-  EXPECT_NE(readBytes(out / "small" / "render.exr"), still) << "the debug template should render differently";
+  EXPECT_EQ(readBytes(out / "small" / "render.exr"), still) << "the bake's render was replaced";
+  EXPECT_NE(readBytes(out / "small" / "render_debug.exr"), still) << "the debug template should render differently";
+  EXPECT_TRUE(fs::exists(out / "small" / "render_debug.png"));
+  const auto named = runRockbake({"render", (out / "small").string(), "--template", "debug", "--output", "flat"});
+  ASSERT_EQ(named.exit_status, 0) << named.output;
+  EXPECT_EQ(readBytes(out / "small" / "flat.exr").size(), readBytes(out / "small" / "render_debug.exr").size());
+  const auto escape = runRockbake({"render", (out / "small").string(), "--output", "../x"});
+  EXPECT_EQ(escape.exit_status, 2) << escape.output;
+  EXPECT_FALSE(fs::exists(out / "x.exr"));
 
   // --no-render stops after the meshes; --no-mesh after the VDB, which it
   // writes whatever export: lists (it is all such a bake gives).

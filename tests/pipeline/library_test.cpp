@@ -662,15 +662,24 @@ TEST(Manifest, RerenderUpdatesTheRenderOutputs) {
                 .exit_status,
             0);
   const std::string render_sha = sha256File(out / "small" / "render.exr");
-  const auto result = runRockbake({"render", (out / "small").string(), "--template", "debug"});
+  const auto result = runRockbake({"render", (out / "small").string(), "--template", "debug", "--output", "render"});
   ASSERT_EQ(result.exit_status, 0) << result.output;
   ASSERT_NE(sha256File(out / "small" / "render.exr"), render_sha) << "the debug template renders differently";
   expectManifestsTrue(out);
-  const json manifest = readJson(out / "small" / kManifestFile);
+  json manifest = readJson(out / "small" / kManifestFile);
   EXPECT_EQ(manifest["rerender"]["template"], "debug");
   std::set<std::string> outputs;
   for (const auto& o : manifest["outputs"]) outputs.insert(o["path"].get<std::string>());
   EXPECT_TRUE(outputs.count("render.exr") && outputs.count("rock.glb") && outputs.count("scene.pov"));
+  // A still of another name joins the outputs.
+  ASSERT_EQ(runRockbake({"render", (out / "small").string(), "--template", "debug"}).exit_status, 0);
+  expectManifestsTrue(out);
+  manifest = readJson(out / "small" / kManifestFile);
+  EXPECT_EQ(manifest["rerender"]["still"], "render_debug");
+  outputs.clear();
+  for (const auto& o : manifest["outputs"]) outputs.insert(o["path"].get<std::string>());
+  EXPECT_TRUE(outputs.count("render_debug.exr") && outputs.count("render_debug.png") &&
+              outputs.count("render_debug.pov"));
 }
 
 }  // namespace
