@@ -459,7 +459,23 @@ CLI::App* declareReview(CLI::App& app, ReviewArgs& args) {
   return command;
 }
 
+// A folder of plain bakes (`rockbake bake -o OUT`) has asset folders but no index: it is indexed
+// first, as `rockbake library --index-only OUT` does, so that review serves it.
+void indexPlainBakes(const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(out) || fs::exists(out / rockbake::kIndexFile)) return;
+  std::error_code ec;
+  bool any = false;
+  for (const auto& entry : fs::directory_iterator(out, ec))
+    any = any || (entry.is_directory() && fs::is_regular_file(entry.path() / rockbake::kManifestFile));
+  if (!any) return;
+  const auto counts = rockbake::writeLibraryIndex(out, {}, {{"index_only", true}});
+  spdlog::info("review: indexed {} ({} assets ok, {} failed, {} damaged), as `rockbake library --index-only` does",
+               out.string(), counts.ok + counts.skipped_resumed, counts.failed, counts.damaged);
+}
+
 int runReview(ReviewArgs args) {
+  indexPlainBakes(args.library_dir);
   args.options.library_dir = args.library_dir;
   args.options.web_root = rockbake::requireDataPath("review");
   args.options.three_root = rockbake::requireDataPath("studio") / "node_modules" / "three";

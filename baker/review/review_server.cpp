@@ -106,8 +106,10 @@ int runReview(const ReviewOptions& options) {
   requirePage(options);
   // A folder without a library is the user's to fix (exit status 2), before anything listens.
   if (!fs::is_regular_file(options.library_dir / "index.json"))
-    throw InputError({(options.library_dir / "index.json").string()}, "", "not found: review serves a baked library",
-                     "bake one first with `rockbake library LIBRARY.yaml -o " + options.library_dir.string() + "`");
+    throw InputError({(options.library_dir / "index.json").string()}, "",
+                     "not found, and no baked asset folder to index: review serves a library or a folder of bakes",
+                     "bake into it first with `rockbake library LIBRARY.yaml -o " + options.library_dir.string() +
+                         "` or `rockbake bake PRESET -o " + options.library_dir.string() + "`");
   libraryIndexAssets(options.library_dir);
   StopSignals signals;  // first: every thread from here on inherits the blocked mask
   ReviewStore store(options.library_dir);

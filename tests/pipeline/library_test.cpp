@@ -652,6 +652,27 @@ TEST(Manifest, BakeWritesItLastListingWhatItWrote) {
   for (const auto& file : outputs) EXPECT_LE(fs::last_write_time(out / "small" / file), manifest_time) << file;
 }
 
+// `rockbake review` on a folder of plain bakes (no library, no index.json) indexes it first, as
+// `library --index-only` does, and serves it; an empty folder is refused, saying what to bake.
+TEST(Review, APlainBakesFolderIsIndexedAndServed) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", kSmallPreset);
+  const fs::path out = dir.path() / "out";
+  ASSERT_EQ(runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render"}).exit_status,
+            0);
+  ASSERT_FALSE(fs::exists(out / "index.json"));
+  const auto served = test::runRockbakeUnder("timeout -s INT 4 ", {"review", out.string(), "--port", "0"});
+  EXPECT_NE(served.output.find("review: indexed"), std::string::npos) << served.output;
+  EXPECT_NE(served.output.find("review: http://127.0.0.1:"), std::string::npos) << served.output;
+  const json index = readJson(out / "index.json");
+  ASSERT_EQ(index["assets"].size(), 1u) << index.dump();
+  EXPECT_EQ(index["assets"][0]["name"], "small");
+  fs::create_directories(dir.path() / "empty");
+  const auto empty = runRockbake({"review", (dir.path() / "empty").string(), "--port", "0"});
+  EXPECT_EQ(empty.exit_status, 2) << empty.output;
+  EXPECT_NE(empty.output.find("rockbake bake PRESET -o"), std::string::npos) << empty.output;
+}
+
 // `rockbake render` writes new renders into a finished folder: its manifest follows them, so the folder
 // still reads as complete (a library re-run does not bake it again).
 TEST(Manifest, RerenderUpdatesTheRenderOutputs) {
