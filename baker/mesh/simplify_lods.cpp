@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include <fmt/format.h>
 #include <meshoptimizer.h>
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
@@ -85,8 +86,14 @@ void relaxLeftovers(SimplifyPass& pass) {
 // a triangle over. Each pass repairs what it can; see the loop for where
 // triangles are then locked (kept as they are) and the rest simplified again.
 // The cleanest pass is kept.
-SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
-  if (m.triangles.empty()) return m;
+// The surface's unrepaired defect, if any ("" when clean).
+struct Simplified {
+  SurfaceMesh mesh;
+  std::string warning;
+};
+
+Simplified simplify(const SurfaceMesh& m, std::size_t target_triangles, std::size_t level, double max_error = -1.0) {
+  if (m.triangles.empty()) return {m, {}};
   const std::size_t index_count = 3 * m.triangles.size();
   const std::size_t target = std::min(std::max<std::size_t>(4, target_triangles) * 3, index_count);
   std::vector<unsigned int> indices(index_count);
@@ -153,27 +160,45 @@ SurfaceMesh simplify(const SurfaceMesh& m, std::size_t target_triangles, std::si
     lockAround(m, lock_around, radius, locked);
     radius *= 2.0;
   }
-  if (best->bad_edges > 0) {
-    spdlog::warn("LOD{} of the {} surface has {} edges not shared by exactly two faces", level, m.name,
-                 best->bad_edges);
-  } else if (best->folds_left > 0) {
-    spdlog::warn("LOD{} of the {} surface keeps {} folded or zero-area triangles", level, m.name, best->folds_left);
+  std::string warning;
+  if (best->bad_edges > 0)
+    warning = fmt::format("LOD{} of the {} surface has {} edges not shared by exactly two faces", level, m.name,
+                          best->bad_edges);
+  else if (best->folds_left > 0)
+    warning =
+        fmt::format("LOD{} of the {} surface keeps {} folded or zero-area triangles", level, m.name, best->folds_left);
+  return {std::move(best->mesh), std::move(warning)};
+}
+
+// Both surfaces of one level side by side; their warnings reported in surface order.
+AssetMeshes simplifyLevel(const AssetMeshes& from, std::size_t rock_target, std::size_t colluvium_target,
+                          std::size_t level, double max_error, SimplifyWarnings* warnings) {
+  Simplified rock, colluvium;
+  sideBySide([&] { rock = simplify(from.rock, rock_target, level, max_error); },
+             [&] { colluvium = simplify(from.colluvium, colluvium_target, level, max_error); });
+  for (const std::string* w : {&rock.warning, &colluvium.warning}) {
+    if (w->empty()) continue;
+    if (warnings)
+      warnings->push_back(*w);
+    else
+      spdlog::warn("{}", *w);
   }
-  return std::move(best->mesh);
+  AssetMeshes out;
+  out.rock = std::move(rock.mesh);
+  out.colluvium = std::move(colluvium.mesh);
+  return out;
 }
 
 }  // namespace
 
-AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error) {
-  AssetMeshes lod0;
-  sideBySide([&] { lod0.rock = simplify(meshes.rock, 0, 0, max_error); },
-             [&] { lod0.colluvium = simplify(meshes.colluvium, 0, 0, max_error); });
+AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error, SimplifyWarnings* warnings) {
+  AssetMeshes lod0 = simplifyLevel(meshes, 0, 0, 0, max_error, warnings);
   lod0.bounds_min = meshes.bounds_min, lod0.bounds_max = meshes.bounds_max;
   lod0.durability_range = meshes.durability_range;
   return lod0;
 }
 
-std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params) {
+std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params, SimplifyWarnings* warnings) {
   // Each LOD is simplified from the previous one (cheaper than starting from
   // the input every time); targets stay shares of the input. The two surfaces
   // simplify in parallel.
@@ -187,10 +212,8 @@ std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams
     const auto count = [&](double full) { return std::size_t(std::llround(ratio * full)); };
     if (count(rock) > from->rock.triangles.size() || count(colluvium) > from->colluvium.triangles.size())
       from = &meshes;
-    AssetMeshes lod;
     const std::size_t level = lods.size() + 1;
-    sideBySide([&] { lod.rock = simplify(from->rock, count(rock), level); },
-               [&] { lod.colluvium = simplify(from->colluvium, count(colluvium), level); });
+    AssetMeshes lod = simplifyLevel(*from, count(rock), count(colluvium), level, -1.0, warnings);
     lod.bounds_min = meshes.bounds_min, lod.bounds_max = meshes.bounds_max;
     lod.durability_range = meshes.durability_range;
     lods.push_back(std::move(lod));

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/surface_mesh.h"
@@ -30,14 +31,21 @@ struct LodParams {
   std::vector<double> targets;
 };
 
+// What a simplification could not repair, one line each, in LOD and surface
+// order ("LOD1 of the rock surface keeps 2 folded or zero-area triangles"). A
+// caller that passes none gets them logged as warnings; one that passes a list
+// says whose asset they are when it logs them.
+using SimplifyWarnings = std::vector<std::string>;
+
 // LOD0: each surface simplified as far as meshoptimizer can while its error
 // (its distance estimate from the input surface) stays within `max_error`
 // (world units).
-AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error);
+AssetMeshes simplifyToError(const AssetMeshes& meshes, double max_error, SimplifyWarnings* warnings = nullptr);
 
 // One AssetMeshes per target, in order. Targets are approached with no error
 // bound (meshoptimizer may stop a little short where every collapse would flip
 // a face).
-std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params);
+std::vector<AssetMeshes> simplifyLods(const AssetMeshes& meshes, const LodParams& params,
+                                      SimplifyWarnings* warnings = nullptr);
 
 }  // namespace rockbake

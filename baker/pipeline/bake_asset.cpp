@@ -134,7 +134,9 @@ SimulationStart startSimulation(Bake& bake, const ResolvedShape& shape) {
     start.initial_rock = resume->snapshot.initial_rock;
     start.cycles_before = resume->cycles;
   } else {
-    VoxelRock initial = buildInitialRock(shape, preset);
+    std::string clipped;
+    VoxelRock initial = buildInitialRock(shape, preset, &clipped);
+    if (!clipped.empty()) spdlog::warn("{}: {}", preset.name, clipped);  // in a library, the job's name
     start.initial_rock = initial.count(Material::Rock);
     if (start.initial_rock == 0)
       throw InputError(preset.locate("shape"), "shape", "the shape covers no voxel of the grid",

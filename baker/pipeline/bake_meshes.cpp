@@ -77,7 +77,9 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   r.attributes_seconds += clock.lap();
 
   r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
-  r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h);
+  SimplifyWarnings warnings;
+  r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h, &warnings);
+  for (const std::string& w : warnings) spdlog::warn("{}: {}", preset.name, w);  // in a library, the job's name
   if (keep_bake_source) r.bake_source = std::move(meshes);
   r.simplify_seconds = clock.lap();
   spdlog::debug(
@@ -92,7 +94,9 @@ MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool kee
   MeshStageResult r = buildMeshes(rock, preset, keep_bake_source);
   if (exportsFormat(preset, "glb")) {
     Stopwatch clock;
-    r.lods = simplifyLods(r.meshes, {preset.mesh.lods});
+    SimplifyWarnings warnings;
+    r.lods = simplifyLods(r.meshes, {preset.mesh.lods}, &warnings);
+    for (const std::string& w : warnings) spdlog::warn("{}: {}", preset.name, w);
     r.simplify_seconds += clock.lap();
   }
   r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");

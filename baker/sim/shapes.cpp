@@ -186,7 +186,7 @@ std::vector<std::uint8_t> individualInside(const ResolvedShape& shape, const Sim
 
 }  // namespace
 
-VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) {
+VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset, std::string* warning) {
   VoxelRock rock;
   rock.layout = computeGridLayout(preset);
   const GridLayout& g = rock.layout;
@@ -211,8 +211,13 @@ VoxelRock buildInitialRock(const ResolvedShape& shape, const SimParams& preset) 
           clipped[std::size_t(z)] = 1;
       }
   });
-  if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end())
-    spdlog::warn("the shape reaches beyond grid.size and was clipped to it");
+  if (std::find(clipped.begin(), clipped.end(), 1) != clipped.end()) {
+    const char* clip = "the shape reaches beyond grid.size and was clipped to it";
+    if (warning)
+      *warning = clip;
+    else
+      spdlog::warn("{}", clip);
+  }
 
   resetRockValues(rock);
   if (preset.durability.rind) rock.rind = rindCoverage(rock, preset.durability.rind->depth);

@@ -652,6 +652,24 @@ TEST(Manifest, BakeWritesItLastListingWhatItWrote) {
   for (const auto& file : outputs) EXPECT_LE(fs::last_write_time(out / "small" / file), manifest_time) << file;
 }
 
+// In a library, a warning says which job it is of: jobs bake side by side and their logs interleave.
+TEST(LibraryRun, WarningsNameTheirJob) {
+  TempDir dir;
+  std::string wide = kSmallPreset;
+  const std::string box = "box: {size: [1.5, 1.5, 1.5]}";
+  wide.replace(wide.find(box), box.size(), "box: {size: [2.6, 1.5, 1.5]}");  // wider than grid.size
+  writeText(dir.path() / "wide.yaml", wide);
+  writeText(dir.path() / "lib.yaml", "- preset: wide.yaml\n  seeds: [1, 2]\n");
+  const auto result = runRockbake({"library", (dir.path() / "lib.yaml").string(), "-o", (dir.path() / "out").string(),
+                                   "--no-render", "--jobs", "2"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  for (const char* job : {"wide-s1", "wide-s2"})
+    EXPECT_NE(result.output.find(std::string(job) + ": the shape reaches beyond grid.size and was clipped to it"),
+              std::string::npos)
+        << job << "\n"
+        << result.output;
+}
+
 // `rockbake review` on a folder of plain bakes (no library, no index.json) indexes it first, as
 // `library --index-only` does, and serves it; an empty folder is refused, saying what to bake.
 TEST(Review, APlainBakesFolderIsIndexedAndServed) {
