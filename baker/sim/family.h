@@ -43,6 +43,9 @@ struct Individual {
   Vec3d pivot{};        // where the blockout's base centre stands in the fitted domain
   double apron = 0.0;   // room left for the debris apron beyond the rock's footprint, world units
   double height = 0.0;  // the scaled blockout's height: the bend and taper are along it
+  // Where the transformed blockout box lies in the fitted domain (world units), a margin
+  // included: no rock outside it, so the start need not look there. Only when drawn.
+  Vec3d box_lo{}, box_hi{};
 };
 
 // The individual `params.seed` draws from `params.family`; without a family,

@@ -146,20 +146,25 @@ InsideTest blockoutInside(const ResolvedShape& shape, const SimParams& preset, c
 // plane of its joint set, `depth` of the rock's width along the plane's normal.
 void cutAlongJoints(std::vector<std::uint8_t>& inside, const GridLayout& g, const Individual& individual) {
   for (const Individual::Cut& cut : individual.cuts) {
-    double lo = 1e300, hi = -1e300;
-    for (int z = 0; z < g.nz; ++z)
+    // The rock's extent along the normal, layer by layer (min and max do not depend on the order).
+    std::vector<double> layer_lo(std::size_t(g.nz), 1e300), layer_hi(std::size_t(g.nz), -1e300);
+    tbb::parallel_for(0, g.nz, [&](int z) {
       for (int y = 0; y < g.ny; ++y)
         for (int x = 0; x < g.nx; ++x)
           if (inside[g.index(x, y, z)]) {
             const double d = dot(g.center(x, y, z), cut.normal);
-            lo = std::min(lo, d), hi = std::max(hi, d);
+            layer_lo[std::size_t(z)] = std::min(layer_lo[std::size_t(z)], d);
+            layer_hi[std::size_t(z)] = std::max(layer_hi[std::size_t(z)], d);
           }
+    });
+    const double lo = *std::min_element(layer_lo.begin(), layer_lo.end());
+    const double hi = *std::max_element(layer_hi.begin(), layer_hi.end());
     if (lo > hi) return;
     const double plane = hi - cut.depth * (hi - lo);
     tbb::parallel_for(0, g.nz, [&](int z) {
       for (int y = 0; y < g.ny; ++y)
         for (int x = 0; x < g.nx; ++x)
-          if (dot(g.center(x, y, z), cut.normal) > plane) inside[g.index(x, y, z)] = 0;
+          if (inside[g.index(x, y, z)] && dot(g.center(x, y, z), cut.normal) > plane) inside[g.index(x, y, z)] = 0;
     });
   }
 }
@@ -173,10 +178,19 @@ std::vector<std::uint8_t> individualInside(const ResolvedShape& shape, const Sim
     return voxelizeMesh(placeMesh(shape.mesh, center), g);
   const InsideTest inside = blockoutInside(shape, preset, center);
   std::vector<std::uint8_t> flags(g.cellCount(), 0);
+  // A family's individual lies within its box (sim/family.h): the apron's room around it holds no rock.
+  const auto inBox = [&](const Vec3d& p) {
+    if (!individual.drawn) return true;
+    for (std::size_t a = 0; a < 3; ++a)
+      if (p[a] < individual.box_lo[a] || p[a] > individual.box_hi[a]) return false;
+    return true;
+  };
   tbb::parallel_for(0, g.nz, [&](int z) {
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x) {
-        const Vec3d p = toBlockout(individual, preset, g.center(x, y, z));
+        const Vec3d world = g.center(x, y, z);
+        if (!inBox(world)) continue;
+        const Vec3d p = toBlockout(individual, preset, world);
         flags[g.index(x, y, z)] = inside(p[0], p[1], p[2]) ? 1 : 0;
       }
   });
