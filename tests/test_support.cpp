@@ -209,4 +209,29 @@ TriangleMesh icosphere(int levels) {
   return m;
 }
 
+std::vector<double> layerRadii(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  std::vector<double> radii(std::size_t(g.nz), 0.0);
+  for (int z = 0; z < g.nz; ++z) {
+    std::size_t n = 0;
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) n += rock.material[g.index(x, y, z)] == Material::Rock;
+    radii[std::size_t(z)] = std::sqrt(double(n) * g.h * g.h / M_PI);
+  }
+  return radii;
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= double(a.size()), mb /= double(b.size());
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
 }  // namespace rockbake::test

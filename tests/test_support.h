@@ -54,6 +54,10 @@ std::vector<Vec3d> surfaceVoxelCentres(const VoxelRock& rock);
 Vec3d rockCentroid(const VoxelRock& rock);
 // Coefficient of variation of the surface voxels' distances from the centroid.
 double surfaceDistanceSpread(const VoxelRock& rock);
+// Per layer z, the radius of a disc of the layer's rock area (world units): a column's profile.
+std::vector<double> layerRadii(const VoxelRock& rock);
+// Pearson's correlation of two equally long series.
+double pearson(const std::vector<double>& a, const std::vector<double>& b);
 
 // A random grid for exact-count and round-trip checks: each cell is rock with
 // probability 0.8 × fill, colluvium with 0.2 × fill, else air (counter-hashed

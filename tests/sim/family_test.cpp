@@ -168,29 +168,6 @@ VoxelRock weathered(const std::string& preset, std::uint64_t seed, int resolutio
   return weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
 }
 
-// Rock voxels per layer, as the radius of a disc of that area.
-std::vector<double> layerRadii(const VoxelRock& rock) {
-  const GridLayout& g = rock.layout;
-  std::vector<double> radii(std::size_t(g.nz), 0.0);
-  for (int z = 0; z < g.nz; ++z) {
-    std::size_t n = 0;
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) n += rock.material[g.index(x, y, z)] == Material::Rock;
-    radii[std::size_t(z)] = std::sqrt(double(n) * g.h * g.h / M_PI);
-  }
-  return radii;
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
-  ma /= double(a.size()), mb /= double(b.size());
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) * (a[i] - ma), sbb += (b[i] - mb) * (b[i] - mb);
-  return sab / std::sqrt(saa * sbb);
-}
-
 double graphAt(const Preset& p, double a) {
   const auto& pts = p.durability.graph.points;
   if (a <= pts.front()[0]) return pts.front()[1];
@@ -205,7 +182,7 @@ double graphAt(const Preset& p, double a) {
 double profileCorrelation(const std::string& preset, std::uint64_t seed, int resolution, double from, double to) {
   const Preset p = loadPreset(test::sourceDir() / "presets" / preset, {{}, seed, resolution});
   const VoxelRock rock = weatherRock(buildInitialRock(resolveShape(p), p), p).rock;
-  const std::vector<double> radii = layerRadii(rock);
+  const std::vector<double> radii = test::layerRadii(rock);
   std::vector<double> r, d;
   for (int z = 0; z < rock.layout.nz; ++z) {
     const double a = rock.layout.altitude(z);
@@ -213,7 +190,7 @@ double profileCorrelation(const std::string& preset, std::uint64_t seed, int res
     r.push_back(radii[std::size_t(z)]);
     d.push_back(graphAt(p, a));
   }
-  return pearson(r, d);
+  return test::pearson(r, d);
 }
 
 // Compared between the apron (which shields the foot: goblin keeps all its
@@ -299,7 +276,7 @@ TEST(CatalogueFamilies, TheArchKeepsItsOpeningAtEverySeed) {
 TEST(CatalogueFamilies, TheHoodoosCapStaysWiderThanItsNeck) {
   for (int s = 0; s < kSeeds; ++s) {
     const VoxelRock rock = weathered("hoodoo-cap.yaml", 21 + std::uint64_t(s), 48);
-    const std::vector<double> radii = layerRadii(rock);
+    const std::vector<double> radii = test::layerRadii(rock);
     double neck = 1e9, cap = 0;
     for (int z = 0; z < rock.layout.nz; ++z) {
       const double a = rock.layout.altitude(z);

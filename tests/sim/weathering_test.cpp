@@ -29,29 +29,6 @@ bool isRock(const VoxelRock& rock, int x, int y, int z) {
   return rock.layout.contains(x, y, z) && rock.material[rock.layout.index(x, y, z)] == Material::Rock;
 }
 
-// Rock voxels per layer z.
-std::vector<int> layerCounts(const VoxelRock& rock) {
-  const GridLayout& g = rock.layout;
-  std::vector<int> counts(std::size_t(g.nz), 0);
-  for (int z = 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) counts[std::size_t(z)] += isRock(rock, x, y, z);
-  return counts;
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
-  ma /= double(a.size()), mb /= double(b.size());
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
 TEST(Weathering, CubeBecomesASphere) {
   // Paper Fig. 9; docs/model.md §5's naive check: 48-voxel cube, radius-6 bubble.
   Preset p = cubePreset(4.8, 48, 0.6);
@@ -162,19 +139,13 @@ Preset columnPreset(int resolution) {
 }
 
 // Mean radius (world units) of the rock in each layer, from its area.
-std::vector<double> layerRadii(const VoxelRock& rock) {
-  std::vector<double> radii;
-  for (int c : layerCounts(rock)) radii.push_back(std::sqrt(c * rock.layout.h * rock.layout.h / M_PI));
-  return radii;
-}
-
 TEST(Weathering, ProfileFollowsTheDurabilityGraph) {
   // Paper Fig. 15: durable layers stand proud, soft layers are cut back.
   Preset p = columnPreset(48);
   p.durability.graph.points = {{0.0, 2.0}, {0.3, 0.5}, {0.55, 2.5}, {0.8, 0.7}, {1.0, 1.5}};
   const WeatheringResult result = weatherRock(buildInitialRock(resolveShape(p), p), p);
   const GridLayout& g = result.rock.layout;
-  const std::vector<double> radii = layerRadii(result.rock);
+  const std::vector<double> radii = test::layerRadii(result.rock);
   std::vector<double> r, d;
   for (int z = 0; z < g.nz; ++z) {
     const double a = g.altitude(z);
@@ -189,7 +160,7 @@ TEST(Weathering, ProfileFollowsTheDurabilityGraph) {
     r.push_back(radii[std::size_t(z)]);
     d.push_back(graph);
   }
-  const double correlation = pearson(r, d);
+  const double correlation = test::pearson(r, d);
   RecordProperty("pearson", std::to_string(correlation));
   EXPECT_GE(correlation, 0.9);
 }
@@ -281,7 +252,7 @@ TEST(Weathering, KeyframeThatSoftensABandSpeedsUpItsRetreatAfterItsTime) {
   const int at_cycle = int(std::ceil(0.75 / g.h));
   for (int c = 0; c < at_cycle; ++c) EXPECT_EQ(a.cycles[std::size_t(c)].rock, b.cycles[std::size_t(c)].rock) << c;
 
-  const std::vector<double> ra = layerRadii(a.rock), rb = layerRadii(b.rock);
+  const std::vector<double> ra = test::layerRadii(a.rock), rb = test::layerRadii(b.rock);
   for (int z = 0; z < g.nz; ++z) {
     const double alt = g.altitude(z);
     if (alt > 0.45 && alt < 0.55) {
