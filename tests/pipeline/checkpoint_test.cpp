@@ -93,8 +93,9 @@ TEST(Checkpoint, ResumesWhateverTheStageSwitches) {
       return nlohmann::json::parse(readBytes(asset / "stats.json"))["cycles"];
     };
     EXPECT_EQ(cycles(dir.path() / "a" / "small"), cycles(out / "small")) << what;
-    if (what != "--no-mesh")  // without meshes rock.vdb holds the voxels' own level set (docs/formats.md)
+    if (what != "--no-mesh") {  // without meshes rock.vdb holds the voxels' own level set (docs/formats.md)
       EXPECT_EQ(readBytes(dir.path() / "a" / "small" / "rock.vdb"), readBytes(out / "small" / "rock.vdb")) << what;
+    }
     EXPECT_EQ(fs::exists(out / "small" / "textures"), switches.empty());
   }
 }
