@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -52,8 +53,16 @@ struct Bake {
   }
 
   const fs::path& dir() const { return staging.path(); }
+  // At every cycle and phase boundary: the studio's progress bar, and a line in the log when a
+  // phase after the simulation starts (each can take seconds: the log says what the bake is doing).
   void progress(double fraction, const char* stage) const {
     if (options.progress) options.progress(fraction, stage);
+    static const std::map<std::string, const char*> kPhases = {{"mesh", "meshes and collision hulls"},
+                                                               {"texture", "the texture set"},
+                                                               {"export", "writing the meshes and rock.vdb"},
+                                                               {"render", "rendering"}};
+    if (const auto phase = kPhases.find(stage); phase != kPhases.end())
+      spdlog::info("{}: {} ({:.1f} s in)", preset.name, phase->second, since_start.elapsed() + options.load_seconds);
   }
   void checkCancel() const {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
@@ -64,7 +73,8 @@ struct Bake {
   const Preset& preset;
   const BakeOptions& options;
   const fs::path asset_dir;
-  Stopwatch clock;
+  Stopwatch clock;        // lapped phase by phase (BakeTimings)
+  Stopwatch since_start;  // never lapped: the log's "s in"
   StagingFolder staging;
   const AssetFolderSnapshot before;
   BakeTimings timings;
