@@ -1,6 +1,9 @@
 #include "inputs/resolve_shape.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "core/mesh_checks.h"
@@ -23,6 +26,20 @@ GrayImage readShapeImage(const Preset& preset, const ImageShape& shape) {
   return image;
 }
 
+// A blockout much wider than tall with the default up axis may be a y-up file lying on its side.
+void warnIfLyingOnItsSide(const Preset& preset, const MeshShape& shape, const TriangleMesh& mesh) {
+  if (shape.up != UpAxis::Z || preset.locations.count("shape.mesh.up") || mesh.positions.empty()) return;
+  Vec3d lo = mesh.positions.front(), hi = lo;
+  for (const auto& p : mesh.positions)
+    for (std::size_t a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  const double height = hi[2] - lo[2], width = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  if (width > 3 * height)
+    spdlog::warn(
+        "{}: shape.mesh: the blockout is {:.1f} times wider than tall with z up; if it was written y up "
+        "(OBJ and glTF from a DCC, rockbake's own OBJ), say shape.mesh.up: y",
+        preset.file.filename().string(), width / std::max(height, 1e-12));
+}
+
 TriangleMesh readBlockout(const Preset& preset, const MeshShape& shape) {
   TriangleMesh mesh;
   try {
@@ -37,8 +54,11 @@ TriangleMesh readBlockout(const Preset& preset, const MeshShape& shape) {
                                  "oriented faces (e.g. vertices {} and {}, used {} times)",
                                  shape.path.string(), open.size(), open[0].a + 1, open[0].b + 1, open[0].uses),
                      "close the holes and make the normals consistent in the modelling package");
-  for (auto& p : mesh.positions)
+  for (auto& p : mesh.positions) {
     for (double& c : p) c *= shape.scale;
+    if (shape.up == UpAxis::Y) p = {p[0], -p[2], p[1]};  // a proper rotation: faces keep their orientation
+  }
+  warnIfLyingOnItsSide(preset, shape, mesh);
   return mesh;
 }
 

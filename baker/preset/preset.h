@@ -51,9 +51,13 @@ struct ImageShape {
 // An artist's closed blockout (OBJ, PLY or STL), voxelized. File coordinates
 // times `scale` are world units; placed like the other shapes by its bounding
 // box (centre in x, y; base at z).
+enum class UpAxis { Z, Y };
 struct MeshShape {
   std::filesystem::path path;  // absolute (resolved against the preset's folder)
   double scale = 1.0;          // world units per file unit, > 0
+  // The file's up axis: z (rockbake's, PLY's and most CAD's) or y (OBJ and glTF as DCCs write them,
+  // rockbake's own OBJ export among them): a y-up file's (x, y, z) is the world's (x, −z, y).
+  UpAxis up = UpAxis::Z;
 };
 using ShapeKind = std::variant<BoxShape, CylinderShape, SphereShape, InsideCornerShape, ImageShape, MeshShape>;
 

@@ -88,6 +88,11 @@ std::span<const EnumName<LodMapSize>> enumNames() {
 }
 
 template <>
+std::span<const EnumName<UpAxis>> enumNames() {
+  static constexpr EnumName<UpAxis> names[] = {{UpAxis::Z, "z"}, {UpAxis::Y, "y"}};
+  return names;
+}
+template <>
 std::span<const EnumName<FamilyGeology>> enumNames() {
   static constexpr EnumName<FamilyGeology> names[] = {{FamilyGeology::Turns, "turns"}, {FamilyGeology::Fixed, "fixed"}};
   return names;
@@ -163,6 +168,8 @@ const MapSpec<MeshShape>& meshShapeSpec() {
           .always(),
       k("scale", &MeshShape::scale, numberIn(0.0, kMaxWorldLength, true), "scales the blockout's coordinates")
           .unit("world units per file unit"),
+      k("up", &MeshShape::up, choice<UpAxis>(),
+        "the file's up axis: `y` for OBJ or glTF written y-up (a file's (x, y, z) is then the world's (x, −z, y))"),
   }};
   return spec;
 }

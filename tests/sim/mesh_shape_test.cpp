@@ -97,6 +97,38 @@ TEST(MeshShape, ObjPlyAndStlGiveTheSameRock) {
   EXPECT_NEAR(double(counts[2]), double(counts[0]), 1e-3 * double(counts[0]));
 }
 
+// A blockout written y up (as DCCs and rockbake's own OBJ write it) stands up with `up: y`; read with
+// the default z up it lies on its side, and the bake says how to stand it up.
+TEST(MeshShape, AYUpBlockoutStandsUpWithUpY) {
+  test::TempDir dir;
+  // A column 0.6 × 0.6 × 2.4 (world z up), written y up: a file's (x, y, z) is the world's (x, −z, y).
+  TriangleMesh column = icosphere(3);
+  for (auto& p : column.positions) p = {0.3 * p[0], 1.2 * p[2], -0.3 * p[1]};
+  writeObj(dir.path() / "column.obj", column);
+  std::vector<double> heights;
+  for (const char* up : {"", ", up: y"}) {
+    std::string text = blockoutPreset("column.obj", 1.0);
+    text.replace(text.find(", scale: "), 0, up);
+    test::writeText(dir.path() / "p.yaml", text);
+    const Preset p = loadPreset(dir.path() / "p.yaml");
+    const VoxelRock rock = buildInitialRock(resolveShape(p), p);
+    double top = 0;
+    for (int z = 0; z < rock.layout.nz; ++z)
+      for (int y = 0; y < rock.layout.ny; ++y)
+        for (int x = 0; x < rock.layout.nx; ++x)
+          if (rock.material[rock.layout.index(x, y, z)] == Material::Rock)
+            top = std::max(top, rock.layout.center(x, y, z)[2]);
+    heights.push_back(top);
+  }
+  EXPECT_NEAR(heights[0], 0.6, 0.1) << "read z up, the column lies on its side";
+  EXPECT_NEAR(heights[1], 2.4, 0.1) << "read y up, it stands";
+  // The bake warns about the first, naming the key to set.
+  test::writeText(dir.path() / "p.yaml", blockoutPreset("column.obj", 1.0));
+  const auto result = test::runRockbake({"lint", (dir.path() / "p.yaml").string()});
+  EXPECT_NE(result.output.find("times wider than tall with z up"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("shape.mesh.up: y"), std::string::npos) << result.output;
+}
+
 TEST(MeshShape, AnOpenOrBrokenMeshIsRefusedWithAMessage) {
   test::TempDir dir;
   writeObj(dir.path() / "open.obj", icosphere(2), 3);  // three faces missing
