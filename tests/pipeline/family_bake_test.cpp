@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/sha256.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -63,6 +64,26 @@ TEST(FamilyBake, TheSameBytesAtOneAndTwoThreads) {
     ++compared;
   }
   EXPECT_GE(compared, 10u);  // meshes, LODs, maps, rock.vdb, asset.json
+}
+
+// A preset without a family bakes as it did before families existed: the rock.vdb of the small box
+// and of corner-cavern (a paper figure, which keeps no family) at 24, as the build before families
+// wrote them (bench/README.md, "Families", compared every output file of five presets).
+TEST(FamilyBake, WithoutAFamilyTheBytesAreThoseOfTheBuildBefore) {
+  test::TempDir dir;
+  test::writeText(dir.path() / "small.yaml", test::kSmallPreset);
+  const fs::path out = dir.path() / "out";
+  ASSERT_EQ(
+      test::runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-mesh"}).exit_status,
+      0);
+  ASSERT_EQ(test::runRockbake({"bake", (test::sourceDir() / "presets" / "corner-cavern.yaml").string(), "-o",
+                               out.string(), "--no-mesh", "--resolution", "24"})
+                .exit_status,
+            0);
+  EXPECT_EQ(sha256Hex(test::readBytes(out / "small" / "rock.vdb")),
+            "51aad3c7efd52071fb809d14a0af2850274b767a9667f53e5a8182313c0123fa");
+  EXPECT_EQ(sha256Hex(test::readBytes(out / "corner-cavern" / "rock.vdb")),
+            "8e3b8eaeb3c8161bc96674bf94707ad0e584ff23dd9a8b434251602b6454bd9f");
 }
 
 }  // namespace
