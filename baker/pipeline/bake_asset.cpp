@@ -43,8 +43,7 @@ using json = nlohmann::ordered_json;
 struct Bake {
   Bake(const Preset& given, const BakeOptions& options)
       : given(given),
-        baked(presetAsBaked(given, options)),
-        preset(baked),
+        preset(presetAsBaked(given, options)),
         options(options),
         asset_dir(options.out_dir / preset.name),
         staging(asset_dir, outOfMemoryMessage(preset), options.lock),
@@ -69,8 +68,7 @@ struct Bake {
   }
 
   const Preset& given;  // as the caller gave it: what checkpoints record
-  const Preset baked;   // presetAsBaked
-  const Preset& preset;
+  const Preset preset;  // presetAsBaked: what every phase bakes
   const BakeOptions& options;
   const fs::path asset_dir;
   Stopwatch clock;        // lapped phase by phase (BakeTimings)

@@ -8,6 +8,7 @@
 #include "core/sha256.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/manifest.h"
+#include "preset/yaml_text.h"
 
 namespace rockbake {
 namespace {
@@ -33,13 +34,6 @@ std::string recordedFingerprint(const fs::path& dir, const nlohmann::json& resol
       return m["inputs"]["preset_sha256"].get<std::string>();
   }
   return sha256Hex(resolved.dump());
-}
-
-bool isOutputName(const std::string& name) {
-  if (name.empty() || name.size() > 64) return false;
-  for (const char c : name)
-    if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-')) return false;
-  return true;
 }
 
 }  // namespace
@@ -77,7 +71,7 @@ RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
                        : options.template_name.empty() || options.template_name == own
                            ? "render"
                            : "render_" + options.template_name;
-  if (!isOutputName(request.still_name))
+  if (!isAssetName(request.still_name))  // the same rule as asset names: a-z, 0-9, _ and -
     throw InputError({"--output"}, "", "'" + request.still_name + "' is not a file name of a-z, 0-9, '_' and '-'",
                      "give a name such as render_debug");
   // A bake of the same asset (which would exchange the folder under the renders) waits for this one.

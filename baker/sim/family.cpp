@@ -25,11 +25,6 @@ double logUniformIn(const Interval& range, double u) {
   return std::exp(uniformIn({std::log(range[0]), std::log(range[1])}, u));
 }
 
-Vec3d blockoutBaseCenter(const SimParams& p) {
-  const Vec3d& size = p.grid.size;
-  return p.shape.center.value_or(Vec3d{size[0] / 2, size[1] / 2, 0.0});
-}
-
 // (x, y) turned by `degrees` counter-clockwise.
 void turn(double& x, double& y, double degrees) {
   const double c = std::cos(degrees * kDegree), s = std::sin(degrees * kDegree);
@@ -182,6 +177,11 @@ void fitDomain(const SimParams& p, Individual& ind) {
 }
 
 }  // namespace
+
+Vec3d blockoutBaseCenter(const SimParams& p) {
+  const Vec3d& size = p.grid.size;
+  return p.shape.center.value_or(Vec3d{size[0] / 2, size[1] / 2, 0.0});
+}
 
 Individual drawIndividual(const SimParams& params) {
   Individual ind;

@@ -48,6 +48,10 @@ struct Individual {
   Vec3d box_lo{}, box_hi{};
 };
 
+// Where the blockout's base centre stands in its own frame (grid.size): shape.center, or the
+// footprint's centre on the ground.
+Vec3d blockoutBaseCenter(const SimParams& params);
+
 // The individual `params.seed` draws from `params.family`; without a family,
 // the blockout in grid.size (domain = grid.size, centred, nothing changed).
 Individual drawIndividual(const SimParams& params);

@@ -172,8 +172,7 @@ void cutAlongJoints(std::vector<std::uint8_t>& inside, const GridLayout& g, cons
 // Which voxel centres the individual holds, before the domain clips it.
 std::vector<std::uint8_t> individualInside(const ResolvedShape& shape, const SimParams& preset, const GridLayout& g,
                                            const Individual& individual) {
-  const Vec3d& size = preset.grid.size;
-  const Vec3d center = shape.params.center.value_or(Vec3d{size[0] / 2, size[1] / 2, 0.0});
+  const Vec3d center = blockoutBaseCenter(preset);
   if (!individual.drawn && std::holds_alternative<MeshShape>(shape.params.kind))
     return voxelizeMesh(placeMesh(shape.mesh, center), g);
   const InsideTest inside = blockoutInside(shape, preset, center);
