@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "preset/preset.h"
 #include "preset/schema.h"
 
 namespace rockbake {
@@ -76,7 +77,45 @@ void applyOverride(YAML::Node& root, const std::string& argument, const std::str
   source.overrides.emplace_back(path, origin.empty() ? "--set " + argument : origin);
 }
 
+// The value of the scalar at `root[block][key]` as an int, or `fallback` when it is missing or
+// not a whole number (the reader reports those later, at the key).
+int scalarOr(const YAML::Node& root, const char* block, const char* key, int fallback) {
+  const YAML::Node parent = root[block];
+  if (!parent.IsDefined() || !parent.IsMap()) return fallback;
+  const YAML::Node value = parent[key];
+  if (!value.IsDefined() || !value.IsScalar()) return fallback;
+  try {
+    return value.as<int>();
+  } catch (const YAML::Exception&) {
+    return fallback;
+  }
+}
+
+// Maps follow --resolution (docs/textures.md §8): a preview at a coarser grid than the
+// preset's keeps the preset's texels per voxel instead of its texel count. `own` is the
+// preset's grid.resolution before the override.
+void followResolution(YAML::Node& root, const PresetOverrides& overrides, int own, Source& source) {
+  if (!root["texture"].IsDefined() || !root["texture"].IsMap()) return;  // no texture set, or a malformed block the reader names
+  const bool set_by_hand = std::any_of(overrides.sets.begin(), overrides.sets.end(), [](const std::string& s) {
+    return s.rfind("texture.size=", 0) == 0 || s.rfind("texture=", 0) == 0;
+  });
+  const int size = scalarOr(root, "texture", "size", TextureParams{}.size);
+  const int scaled = mapSizeAtResolution(size, own, *overrides.resolution);
+  if (set_by_hand || scaled == size) return;
+  root["texture"]["size"] = scaled;
+  source.overrides.emplace_back("texture.size", "--resolution " + std::to_string(*overrides.resolution) +
+                                                    " (maps follow the resolution)");
+}
+
 }  // namespace
+
+int mapSizeAtResolution(int size, int own_resolution, int resolution) {
+  if (own_resolution <= 0 || resolution >= own_resolution) return size;
+  const double wanted = double(size) * resolution / own_resolution;
+  int scaled = kMinFollowedMapSize;
+  while (scaled < wanted && scaled < size) scaled *= 2;
+  return std::min(scaled, size);
+}
 
 void applyOverrides(YAML::Node& root, const PresetOverrides& overrides, Source& source) {
   for (std::size_t i = 0; i < overrides.sets.size(); ++i)
@@ -86,6 +125,7 @@ void applyOverrides(YAML::Node& root, const PresetOverrides& overrides, Source& 
     source.overrides.emplace_back("seed", "--seed " + std::to_string(*overrides.seed));
   }
   if (overrides.resolution) {
+    followResolution(root, overrides, scalarOr(root, "grid", "resolution", GridParams{}.resolution), source);
     if (!root["grid"].IsDefined() || root["grid"].IsNull()) root["grid"] = YAML::Node(YAML::NodeType::Map);
     if (root["grid"].IsMap()) root["grid"]["resolution"] = *overrides.resolution;
     source.overrides.emplace_back("grid.resolution", "--resolution " + std::to_string(*overrides.resolution));

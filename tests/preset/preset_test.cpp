@@ -8,6 +8,7 @@
 #include "pipeline/read_inputs.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "preset/preset_overrides.h"
 #include "sim/grid_layout.h"
 #include "test_support.h"
 
@@ -313,6 +314,38 @@ TEST(Preset, SetOverridesApplyBeforeValidation) {
   EXPECT_NE(setError("colluvium.yield=3").find("--set colluvium.yield=3: colluvium.yield: must be in [0, 1]"),
             std::string::npos)
       << setError("colluvium.yield=3");
+}
+
+TEST(Preset, MapsFollowACoarserResolution) {
+  // The preset's texels per voxel or more, as a power of two between 256 and the preset's size.
+  EXPECT_EQ(mapSizeAtResolution(2048, 96, 32), 1024);  // 682.7 → 1024
+  EXPECT_EQ(mapSizeAtResolution(2048, 96, 24), 512);
+  EXPECT_EQ(mapSizeAtResolution(2048, 96, 8), 256);
+  EXPECT_EQ(mapSizeAtResolution(2048, 96, 96), 2048);
+  EXPECT_EQ(mapSizeAtResolution(2048, 96, 384), 2048);  // a finer bake keeps the preset's budget
+  EXPECT_EQ(mapSizeAtResolution(512, 96, 8), 256);
+
+  const std::string textured = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n"
+                               "grid: {size: [1, 1, 1], resolution: 96}\ntexture: {size: 2048}\n";
+  PresetOverrides preview;
+  preview.resolution = 24;
+  const Preset p = parsePreset(textured, "p.yaml", preview);
+  ASSERT_TRUE(p.texture.has_value());
+  EXPECT_EQ(p.texture->size, 512);
+  EXPECT_EQ(p.grid.resolution, 24);
+  // Where it came from, for messages and the manifest.
+  EXPECT_NE(p.locate("texture.size").file.find("maps follow the resolution"), std::string::npos)
+      << p.locate("texture.size").file;
+
+  PresetOverrides by_hand = preview;
+  by_hand.sets = {"texture.size=4096"};
+  EXPECT_EQ(parsePreset(textured, "p.yaml", by_hand).texture->size, 4096);
+  PresetOverrides finer;
+  finer.resolution = 192;
+  EXPECT_EQ(parsePreset(textured, "p.yaml", finer).texture->size, 2048);
+  // No texture block: nothing to follow, and none is made.
+  const std::string bare = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n";
+  EXPECT_FALSE(parsePreset(bare, "p.yaml", preview).texture.has_value());
 }
 
 TEST(Preset, ResolvedJsonReadsLikeAPreset) {
