@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -82,6 +83,36 @@ void writeExrWithMetadata(const std::filesystem::path& source, const std::filesy
   HalfImage img = readHalf(source);
   // POV-Ray stamps the time of the render; without it the EXR depends only on
   // the bake's inputs, so two bakes of one preset give the same bytes.
+  img.header.erase("creation");
+  addMetadata(img.header, metadata);
+  writeHalf(target, img.header, img.channels, img.pixels);
+}
+
+void joinExrBands(const std::vector<ExrBand>& bands, const std::filesystem::path& target,
+                  const RenderMetadata& metadata) {
+  if (bands.empty()) throw std::runtime_error("cannot write EXR " + target.string() + ": no bands");
+  HalfImage img = readHalf(bands.front().file);
+  std::vector<bool> covered(std::size_t(img.height), false);
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const ExrBand& band = bands[b];
+    if (band.first_row < 0 || band.end_row > img.height || band.first_row >= band.end_row)
+      throw std::runtime_error("cannot write EXR " + target.string() + ": band " + std::to_string(b) +
+                               " has rows outside the image");
+    const HalfImage part = b == 0 ? HalfImage{} : readHalf(band.file);
+    if (b > 0 && (part.width != img.width || part.height != img.height))
+      throw std::runtime_error("cannot write EXR " + target.string() + ": " + band.file.string() +
+                               " is not the size of " + bands.front().file.string());
+    for (int y = band.first_row; y < band.end_row; ++y) {
+      if (covered[std::size_t(y)])
+        throw std::runtime_error("cannot write EXR " + target.string() + ": row " + std::to_string(y) + " twice");
+      covered[std::size_t(y)] = true;
+      if (b == 0) continue;
+      const std::size_t row = std::size_t(y) * std::size_t(img.width);
+      std::copy_n(part.pixels.begin() + std::ptrdiff_t(row), img.width, img.pixels.begin() + std::ptrdiff_t(row));
+    }
+  }
+  if (std::find(covered.begin(), covered.end(), false) != covered.end())
+    throw std::runtime_error("cannot write EXR " + target.string() + ": the bands leave rows out");
   img.header.erase("creation");
   addMetadata(img.header, metadata);
   writeHalf(target, img.header, img.channels, img.pixels);

@@ -28,6 +28,20 @@ struct RenderMetadata {
 void writeExrWithMetadata(const std::filesystem::path& source, const std::filesystem::path& target,
                           const RenderMetadata& metadata);
 
+// One band of an image rendered in parts: `file` (the whole image's size) holds rows
+// [first_row, end_row); its other rows are ignored.
+struct ExrBand {
+  std::filesystem::path file;
+  int first_row = 0;
+  int end_row = 0;
+};
+
+// Joins `bands` (one size, their rows covering the image once) into `target` as
+// writeExrWithMetadata writes one file: the header is the first band's. The same pixels
+// give the same bytes however the rows were split.
+void joinExrBands(const std::vector<ExrBand>& bands, const std::filesystem::path& target,
+                  const RenderMetadata& metadata);
+
 // Lays `frames` (EXRs of equal size) out left to right, top to bottom in a grid
 // of `columns` columns (0: ceil(sqrt(n))) and writes a half RGBA EXR atomically.
 // Returns {width, height} of the sheet.

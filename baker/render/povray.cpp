@@ -55,7 +55,12 @@ std::vector<std::string> povrayArguments(const PovrayJob& job) {
                                    // from run to run at any thread count above one
                                    // (docs/rendering.md, "Running POV-Ray").
                                    "-J",
-                                   "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads)};
+                                   "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads),
+                                   "+BS" + std::to_string(kPovrayBlockRows)};
+  if (job.end_row > 0) {
+    argv.push_back("+SR" + std::to_string(job.first_row + 1));  // POV-Ray counts rows from 1
+    argv.push_back("+ER" + std::to_string(job.end_row));
+  }
   return argv;
 }
 

@@ -20,6 +20,12 @@ struct PovrayJob {
   int quality = 9;         // +Q0..11
   double antialias = 0.3;  // +A<threshold>; <= 0: -A
   int threads = 1;         // +WT<threads>: POV-Ray's render threads (>= 1)
+  // +SR/+ER: render only rows [first_row, end_row) (0-based; end_row 0: to the bottom). The
+  // file still holds the whole image, the other rows black. With one thread, a band whose
+  // rows start and end on kPovrayBlockRows boundaries holds the pixels of the whole render
+  // exactly (docs/rendering.md, "Running POV-Ray").
+  int first_row = 0;
+  int end_row = 0;
   std::chrono::seconds timeout{1800};
   std::string executable = "povray";  // looked up on PATH
   // When set and it turns true, POV-Ray is killed within a second and
@@ -40,6 +46,10 @@ class PovrayError : public std::runtime_error {
  public:
   explicit PovrayError(const std::string& what) : std::runtime_error(what) {}
 };
+
+// POV-Ray's render block, rows and columns (+BS): passed explicitly, since bands of a still
+// are cut at block boundaries.
+inline constexpr int kPovrayBlockRows = 32;
 
 // The argument vector runPovray passes (argv[0] = executable). Antialiasing
 // jitter is always off (-J), so the pixels are the same at any +WT.

@@ -45,35 +45,72 @@ RenderMetadata metadataFor(const RenderRequest& r, int frame, const CameraSetup&
   return m;
 }
 
-// POV-Ray writes to a hidden temporary; the final EXR (with metadata) appears
-// atomically, so a killed render never leaves a file that looks finished.
-void renderOne(const RenderRequest& r, int threads, const std::filesystem::path& scene_rel,
+// Rows [first, end) of each band a still is rendered in: `bands` runs of whole POV-Ray blocks
+// (kPovrayBlockRows), as even as the blocks allow; fewer when the image has fewer blocks.
+std::vector<std::pair<int, int>> stillBands(int height, int bands) {
+  const int blocks = (height + kPovrayBlockRows - 1) / kPovrayBlockRows;
+  const int n = std::clamp(bands, 1, std::max(1, blocks));
+  std::vector<std::pair<int, int>> rows;
+  for (int k = 0; k < n; ++k) {
+    const int first = blocks * k / n * kPovrayBlockRows, end = blocks * (k + 1) / n * kPovrayBlockRows;
+    rows.emplace_back(first, std::min(end, height));
+  }
+  return rows;
+}
+
+// POV-Ray writes to hidden temporaries; the final EXR (with metadata) appears atomically, so
+// a killed render never leaves a file that looks finished. With `bands` above one, each band
+// of rows is its own single-threaded POV-Ray process, run side by side and joined: a band cut
+// at block boundaries has exactly the pixels of the whole render (docs/rendering.md), so the
+// EXR's bytes do not depend on how many bands there were.
+void renderOne(const RenderRequest& r, int bands, const std::filesystem::path& scene_rel,
                const std::filesystem::path& exr_rel, const RenderMetadata& md, int width, int height) {
-  std::string tmp_name = ".";
-  tmp_name += exr_rel.stem().string();
-  tmp_name += ".povray.exr";
-  const auto tmp_rel = exr_rel.parent_path() / tmp_name;
-  PovrayJob job;
-  job.working_dir = r.asset_dir;
-  job.scene = scene_rel;
-  job.output = tmp_rel;
-  job.width = width;
-  job.height = height;
-  job.quality = r.params.quality;
-  job.antialias = r.params.antialias;
-  job.threads = threads;
-  job.timeout = r.timeout;
-  job.cancel = r.cancel;
-  try {
-    runPovray(job);
-    writeExrWithMetadata(r.asset_dir / tmp_rel, r.asset_dir / exr_rel, md);
-  } catch (...) {
+  const std::vector<std::pair<int, int>> rows = stillBands(height, bands);
+  std::vector<ExrBand> parts;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    std::string tmp_name = ".";
+    tmp_name += exr_rel.stem().string();
+    if (rows.size() > 1) tmp_name += ".band" + std::to_string(k);
+    tmp_name += ".povray.exr";
+    parts.push_back({exr_rel.parent_path() / tmp_name, rows[k].first, rows[k].second});
+  }
+  const auto removeParts = [&] {
     std::error_code ec;
-    std::filesystem::remove(r.asset_dir / tmp_rel, ec);
+    for (const ExrBand& part : parts) std::filesystem::remove(r.asset_dir / part.file, ec);
+  };
+  const auto renderPart = [&](const ExrBand& part) {
+    PovrayJob job;
+    job.working_dir = r.asset_dir;
+    job.scene = scene_rel;
+    job.output = part.file;
+    job.width = width;
+    job.height = height;
+    if (parts.size() > 1) job.first_row = part.first_row, job.end_row = part.end_row;
+    job.quality = r.params.quality;
+    job.antialias = r.params.antialias;
+    job.threads = 1;
+    job.timeout = r.timeout;
+    job.cancel = r.cancel;
+    runPovray(job);
+  };
+  try {
+    if (parts.size() == 1) {
+      renderPart(parts.front());
+      writeExrWithMetadata(r.asset_dir / parts.front().file, r.asset_dir / exr_rel, md);
+    } else {
+      tbb::task_arena arena(int(parts.size()));
+      arena.execute([&] {
+        tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t k) { renderPart(parts[k]); });
+      });
+      std::vector<ExrBand> files = parts;
+      for (ExrBand& part : files) part.file = r.asset_dir / part.file;
+      joinExrBands(files, r.asset_dir / exr_rel, md);
+    }
+  } catch (...) {
+    removeParts();
     throw;
   }
-  std::error_code ec;
-  std::filesystem::remove(r.asset_dir / tmp_rel, ec);
+  removeParts();
 }
 
 RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r) {
@@ -111,8 +148,9 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   auto t = Clock::now();
   // One POV-Ray thread per image: with more, POV-Ray's adaptive antialiasing compares pixels
   // across blocks that other threads may or may not have rendered yet, so an image changes
-  // from run to run on a loaded machine (docs/rendering.md). Turntable frames use the cores.
-  renderOne(r, 1, scene_name, r.still_name + ".exr", metadataFor(r, 0, home), w, h);
+  // from run to run on a loaded machine (docs/rendering.md). The still uses the cores as
+  // bands of rows, one process each; turntable frames as frames side by side.
+  renderOne(r, threads, scene_name, r.still_name + ".exr", metadataFor(r, 0, home), w, h);
   out.seconds_still = since(t);
   t = Clock::now();
   exrToPng(out.render_exr, out.render_png, ocio);

@@ -313,6 +313,32 @@ TEST(RenderTest, MissingPovrayNamesThePackage) {
   EXPECT_NE(what.find("apt-get install povray"), std::string::npos) << what;
 }
 
+// A lone still uses the cores: with two threads, two single-threaded POV-Ray processes render
+// its two bands of whole blocks (a logging `povray` ahead of the real one on PATH sees them).
+TEST(RenderTest, AStillRendersInBandsOfRowsOnePovrayEach) {
+  test::TempDir dir;
+  const auto log = dir.path() / "povray.log";
+  test::writeText(dir.path() / "povray", "#!/bin/sh\necho \"$*\" >> '" + log.string() + "'\nexec /usr/bin/povray \"$@\"\n");
+  std::filesystem::permissions(dir.path() / "povray", std::filesystem::perms::owner_all);
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  setenv("PATH", (dir.path().string() + ":" + saved).c_str(), 1);
+  RenderRequest r = request(dir.path() / "asset", "studio", 160, 120);
+  r.threads = 2;
+  const RenderOutputs out = renderAsset(twoLayerRock(2), r);
+  setenv("PATH", saved.c_str(), 1);
+  const std::string calls = test::readBytes(log);
+  EXPECT_EQ(std::count(calls.begin(), calls.end(), '\n'), 2) << calls;
+  EXPECT_NE(calls.find("+WT1 +BS32 +SR1 +ER64"), std::string::npos) << calls;
+  EXPECT_NE(calls.find("+WT1 +BS32 +SR65 +ER120"), std::string::npos) << calls;
+  // Every row was rendered: the sky's gradient reaches the first and the last row.
+  const Image img = readExr(out.render_exr);
+  for (const int y : {0, 63, 64, 119}) {
+    const Imf::Rgba& p = img.at(0, y);
+    EXPECT_GT(float(p.r) + float(p.g) + float(p.b), 0.0f) << "row " << y;
+  }
+}
+
 TEST(RenderTest, PovrayArgumentsAreExplicit) {
   PovrayJob job;
   job.scene = "scene.pov";
@@ -324,8 +350,15 @@ TEST(RenderTest, PovrayArgumentsAreExplicit) {
   job.threads = 2;
   const auto args = povrayArguments(job);
   const std::vector<std::string> expected = {"povray", "-D",    "-V",    "-P",  "+Iscene.pov", "+Orender.exr",
-                                             "+FE",    "+W320", "+H240", "+Q9", "+A0.3",       "-J", "+WT2"};
+                                             "+FE",    "+W320", "+H240", "+Q9", "+A0.3",       "-J", "+WT2", "+BS32"};
   EXPECT_EQ(args, expected);
+  // A band: POV-Ray's rows count from 1 and its end row is inclusive.
+  job.first_row = 64;
+  job.end_row = 128;
+  const auto band = povrayArguments(job);
+  ASSERT_EQ(band.size(), expected.size() + 2);
+  EXPECT_EQ(band[band.size() - 2], "+SR65");
+  EXPECT_EQ(band.back(), "+ER128");
 }
 
 TEST(RenderTest, WorldToPovSwapsYAndZ) {
@@ -501,6 +534,16 @@ TEST(RenderTest, RendersAreTheSameBytesAtAnyThreadCount) {
   const RenderOutputs b = renderAsset(twoLayerRock(3), two);
   EXPECT_EQ(test::readBytes(a.render_exr), test::readBytes(b.render_exr));
   EXPECT_EQ(test::readBytes(a.render_png), test::readBytes(b.render_png));
+  // The still in three bands of rows (120 rows: 32, 32 and 56), each its own POV-Ray process,
+  // joined: the same bytes as one process, and no band's temporary left behind.
+  RenderRequest three = one;
+  three.asset_dir = dir.path() / "three";
+  three.threads = 3;
+  three.params.turntable_frames = 0;
+  const RenderOutputs c = renderAsset(twoLayerRock(3), three);
+  EXPECT_EQ(test::readBytes(a.render_exr), test::readBytes(c.render_exr));
+  for (const auto& entry : std::filesystem::directory_iterator(three.asset_dir))
+    EXPECT_EQ(entry.path().filename().string().find(".povray"), std::string::npos) << entry.path();
   ASSERT_EQ(a.turntable_frames.size(), b.turntable_frames.size());
   for (std::size_t i = 0; i < a.turntable_frames.size(); ++i)
     EXPECT_EQ(test::readBytes(a.turntable_frames[i]), test::readBytes(b.turntable_frames[i])) << i;
