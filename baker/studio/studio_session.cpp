@@ -186,6 +186,10 @@ double StudioSession::time() const {
 bool StudioSession::finished() const {
   return simulation().finished();
 }
+bool StudioSession::keepsOwnStop() const {
+  return cycle() == end_cycle_;
+}
+
 bool StudioSession::atEnd() const {
   return cycle() >= end_cycle_ || finished();
 }
@@ -412,8 +416,14 @@ std::string StudioSession::savedYaml(const std::string& name) const {
   durability["keyframes"] = toYaml(resolved["durability"]["keyframes"]);
   root["bubbles"] = toYaml(resolved["bubbles"]);
   root["response"] = toYaml(resolved["response"]);
-  root.remove("cycles");
-  root["time"] = YAML::Node(fmt::format("{}", time()));
+  // Run to the preset's own end, the preset's `time` (or `cycles`) stays as written: the
+  // current time is that end snapped to preview cycles, and written out it would make the final
+  // bake at the preset's resolution run a cycle more than the preset asks. Stopped anywhere
+  // else, the current time is the artist's choice.
+  if (!keepsOwnStop()) {
+    root.remove("cycles");
+    root["time"] = YAML::Node(fmt::format("{}", time()));
+  }
   YAML::Emitter out;
   out << root;
   return std::string("# Saved by rockbake studio at time ") + fmt::format("{}", time()) + " (resolution " +
@@ -448,8 +458,10 @@ SaveResult StudioSession::save(const std::string& name, bool overwrite) {
   const fs::path scratch = folder / ("." + name + ".studio-check.yaml");
   Preset expected = preset_;
   expected.name = name;
-  expected.stop.time = time();
-  expected.stop.cycles.reset();
+  if (!keepsOwnStop()) {
+    expected.stop.time = time();
+    expected.stop.cycles.reset();
+  }
   try {
     writeFileAtomically(scratch, text);
     const Preset reread = loadPreset(scratch, {{}, std::nullopt, resolution_});

@@ -64,6 +64,9 @@ class StudioSession {
   // simulation goes back to its latest checkpoint (a cycle cut short may have
   // left it half-done) and StudioError 503 says so; the session carries on.
   CycleStats step();
+  // Whether a save keeps the preset's own `time` or `cycles`: the current cycle is the
+  // preset's last (otherwise a save writes `time` as the current time).
+  bool keepsOwnStop() const;
   bool atEnd() const;          // the preset's time reached, or its `until`: where play stops
   bool finished() const;       // nothing more can run (`until` reached)
   void reset();                // back to time 0, keeping the edits; only time 0's checkpoint stays

@@ -49,8 +49,21 @@ function setupSaveAndBake() {
   });
 }
 
+// The default pace plays the preset's whole run in this many seconds, whatever the preview
+// resolution (a finer one runs more, shorter cycles): time to see the rock change and to
+// drag a point while it does, so an edit lands as a keyframe mid-run (docs/studio.md).
+const kSteerSeconds = 30;
+
+// Cycles per second for the rate menu's choice: a number, or the steering pace from the run's
+// length in cycles (end_time / h), at least half a cycle a second.
+export function playRate(choice, server) {
+  if (choice !== 'steer') return Number(choice);
+  const cycles = server && server.h > 0 ? Math.round(server.end_time / server.h) : kSteerSeconds;
+  return Math.max(0.5, Math.round((100 * cycles) / kSteerSeconds) / 100);
+}
+
 export function setupTransport() {
-  const rate = () => Number($('rate').value);
+  const rate = () => playRate($('rate').value, state.server);
   $('play').addEventListener('click', () =>
     control(state.server?.playing ? { action: 'pause' } : { action: 'play', rate: rate() }));
   $('rate').addEventListener('change', () => { if (state.server?.playing) control({ action: 'play', rate: rate() }); });

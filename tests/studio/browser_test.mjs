@@ -67,9 +67,20 @@ try {
   ok(coverage.rock > 0.3 && coverage.sky < 0.05,
     `the 3-D view draws the rock (${(100 * coverage.rock).toFixed(0)}% of its box differs from the background, sky ${(100 * coverage.sky).toFixed(0)}%)`);
 
-  // Play, then drag a durability point while it runs.
-  await page.select('#rate', '5');  // slow enough that the drag lands while it plays, on a busy machine too
+  // The default pace leaves time to steer: play plays the preset's whole run in 30 s.
+  ok(await page.$eval('#rate', (e) => e.value) === 'steer', 'the rate menu starts at the steering pace');
   await page.click('#play');
+  const steering = await until('play at the default pace', async () => {
+    const s = (await api(url, '/api/state')).json;
+    return s.playing ? s : null;
+  }, 20);
+  const runCycles = Math.round(steering.end_time / steering.h);
+  ok(Math.abs(steering.rate - Math.max(0.5, Math.round((100 * runCycles) / 30) / 100)) < 1e-9,
+    `the default pace runs the ${runCycles} cycles in about 30 s (${steering.rate} cycles/s)`);
+
+  // Then at 5 cycles a second, drag a durability point while it runs.
+  await page.waitForFunction(() => document.querySelector('#play').textContent === 'pause', { timeout: 20000 });
+  await page.select('#rate', '5');  // slow enough that the drag lands while it plays, on a busy machine too
   await until('a few cycles', async () => (await api(url, '/api/state')).json.cycle >= 3);
   const before = (await api(url, '/api/state')).json;
   ok(before.playing, 'play runs the simulation');

@@ -3,6 +3,8 @@
 // running, and StudioSession's edits, seeks, branches and save contract.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -196,6 +198,30 @@ TEST(StudioSession, EditsSeeksAndABranchSaveAPresetThatBakesToTheSameRock) {
   EXPECT_DOUBLE_EQ(saved.time, 8 * h);
   EXPECT_EQ(bakedVdb(saved.path, 24, dir), studio.rockVdb());
   EXPECT_EQ(loadPreset(saved.path).name, "goblin-branch");
+}
+
+// Run to the preset's end, a save keeps the preset's own `time` (not the end snapped to preview
+// cycles, which would make the final bake at the preset's resolution run a cycle more); the
+// saved preset still bakes the studio's rock at the studio's resolution.
+TEST(StudioSession, ASaveAtTheRunsEndKeepsThePresetsTime) {
+  TempDir dir;
+  const auto file = goblinFolder(dir);
+  std::string text = test::readBytes(file);
+  text = std::regex_replace(text, std::regex("\ntime: [^\n]*"), "\ntime: 0.8");
+  test::writeText(file, text);
+  const Preset own = loadPreset(file);
+  ASSERT_EQ(own.stop.time, 0.8);
+  StudioSession studio(file, 24);
+  const double end = studio.state()["end_time"].get<double>();
+  ASSERT_NE(end, *own.stop.time) << "pick a preview resolution whose cycles do not end on the preset's time";
+  studio.runUntil(end);
+  ASSERT_TRUE(studio.atEnd());
+  const SaveResult saved = studio.save("goblin-end", false);
+  const Preset reread = loadPreset(saved.path);
+  ASSERT_TRUE(reread.stop.time.has_value());
+  EXPECT_EQ(*reread.stop.time, *own.stop.time);
+  EXPECT_FALSE(reread.stop.cycles.has_value());
+  EXPECT_EQ(bakedVdb(saved.path, 24, dir), studio.rockVdb());
 }
 
 TEST(StudioSession, RefusesEditsAndSavesItCannotHonour) {
