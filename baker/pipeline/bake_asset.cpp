@@ -286,6 +286,17 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.varied = preset.bake.palette == Palette::Natural;  // the debug and curvature palettes are data
   request.name = preset.name;
   request.folder = bake.dir() / kTextureFolder;
+  // The set takes seconds per LOD at the house sizes: the log follows it LOD by LOD.
+  request.progress = [&bake](int lod, int size, int lods_done, int lods) {
+    if (bake.options.progress) bake.options.progress(0.75 + 0.05 * lods_done / std::max(1, lods), "texture");
+    const double in = bake.since_start.elapsed() + bake.options.load_seconds;
+    if (lods_done == 0)
+      spdlog::info("{}: texture set: {} LOD{} unwrapped ({:.1f} s in)", bake.preset.name, lods, lods == 1 ? "" : "s",
+                   in);
+    else
+      spdlog::info("{}: texture set: LOD{}'s maps, {} × {} ({} of {}, {:.1f} s in)", bake.preset.name, lod, size, size,
+                   lods_done, lods, in);
+  };
   std::vector<AssetMeshes> lods{meshes->meshes};
   lods.insert(lods.end(), meshes->lods.begin(), meshes->lods.end());
   TextureSet set = bakeTextureSet(lods, source, request);

@@ -95,7 +95,8 @@ int scalarOr(const YAML::Node& root, const char* block, const char* key, int fal
 // preset's keeps the preset's texels per voxel instead of its texel count. `own` is the
 // preset's grid.resolution before the override.
 void followResolution(YAML::Node& root, const PresetOverrides& overrides, int own, Source& source) {
-  if (!root["texture"].IsDefined() || !root["texture"].IsMap()) return;  // no texture set, or a malformed block the reader names
+  if (!root["texture"].IsDefined() || !root["texture"].IsMap())
+    return;  // no texture set, or a malformed block the reader names
   const bool set_by_hand = std::any_of(overrides.sets.begin(), overrides.sets.end(), [](const std::string& s) {
     return s.rfind("texture.size=", 0) == 0 || s.rfind("texture=", 0) == 0;
   });
@@ -103,8 +104,8 @@ void followResolution(YAML::Node& root, const PresetOverrides& overrides, int ow
   const int scaled = mapSizeAtResolution(size, own, *overrides.resolution);
   if (set_by_hand || scaled == size) return;
   root["texture"]["size"] = scaled;
-  source.overrides.emplace_back("texture.size", "--resolution " + std::to_string(*overrides.resolution) +
-                                                    " (maps follow the resolution)");
+  source.overrides.emplace_back(
+      "texture.size", "--resolution " + std::to_string(*overrides.resolution) + " (maps follow the resolution)");
 }
 
 }  // namespace

@@ -39,24 +39,15 @@ std::string commandLine(const std::vector<std::string>& argv) {
 std::vector<std::string> povrayArguments(const PovrayJob& job) {
   std::ostringstream a;
   a << job.antialias;
-  std::vector<std::string> argv = {job.executable,
-                                   "-D",
-                                   "-V",
-                                   "-P",
-                                   "+I" + job.scene.string(),
-                                   "+O" + job.output.string(),
-                                   "+FE",
-                                   "+W" + std::to_string(job.width),
-                                   "+H" + std::to_string(job.height),
-                                   "+Q" + std::to_string(job.quality),
-                                   job.antialias > 0 ? "+A" + a.str() : std::string("-A"),
-                                   // Antialiasing jitter off: POV-Ray's jitter differs with the
-                                   // thread that renders a block, so a jittered image changes
-                                   // from run to run at any thread count above one
-                                   // (docs/rendering.md, "Running POV-Ray").
-                                   "-J",
-                                   "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads),
-                                   "+BS" + std::to_string(kPovrayBlockRows)};
+  std::vector<std::string> argv = {
+      job.executable, "-D", "-V", "-P", "+I" + job.scene.string(), "+O" + job.output.string(), "+FE",
+      "+W" + std::to_string(job.width), "+H" + std::to_string(job.height), "+Q" + std::to_string(job.quality),
+      job.antialias > 0 ? "+A" + a.str() : std::string("-A"),
+      // Antialiasing jitter off: POV-Ray's jitter differs with the
+      // thread that renders a block, so a jittered image changes
+      // from run to run at any thread count above one
+      // (docs/rendering.md, "Running POV-Ray").
+      "-J", "+WT" + std::to_string(job.threads < 1 ? 1 : job.threads), "+BS" + std::to_string(kPovrayBlockRows)};
   if (job.end_row > 0) {
     argv.push_back("+SR" + std::to_string(job.first_row + 1));  // POV-Ray counts rows from 1
     argv.push_back("+ER" + std::to_string(job.end_row));

@@ -99,9 +99,8 @@ void renderOne(const RenderRequest& r, int bands, const std::filesystem::path& s
       writeExrWithMetadata(r.asset_dir / parts.front().file, r.asset_dir / exr_rel, md);
     } else {
       tbb::task_arena arena(int(parts.size()));
-      arena.execute([&] {
-        tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t k) { renderPart(parts[k]); });
-      });
+      arena.execute(
+          [&] { tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t k) { renderPart(parts[k]); }); });
       std::vector<ExrBand> files = parts;
       for (ExrBand& part : files) part.file = r.asset_dir / part.file;
       joinExrBands(files, r.asset_dir / exr_rel, md);

@@ -59,6 +59,9 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
                 [&](std::size_t k) { atlases[k] = buildUvAtlas(lods[k], lodMapSize(params, int(k)), params.padding); });
   releaseFreedHeap();
   step("atlases");
+  const int lod_count = int(lods.size());
+  int lods_done = 0;
+  if (request.progress) request.progress(-1, 0, 0, lod_count);
 
   // LOD0 last: its rays are the last the ray scene serves, so the scene is gone before its
   // maps, the largest, are made (docs/textures.md §11). The files are listed LOD by LOD.
@@ -147,6 +150,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
           break;
       }
     }
+    if (request.progress) request.progress(int(k), size, ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {
     set.charts.push_back(atlas.charts);

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct TextureSetRequest {
   // in memory at a time (0: kBandRows); smaller ones whole. The files are the same either way.
   int band_rows = 0;
   int whole_map_size = 2048;  // the largest map made whole (≤ 0: every map in bands)
+  // Called as the set goes: after every LOD's atlas (`lods_done` 0) and after each LOD's maps
+  // (`lods_done` 1 … `lods`; `lod` the LOD just finished, `size` its maps' width). May be empty.
+  std::function<void(int lod, int size, int lods_done, int lods)> progress;
 };
 
 inline constexpr int kBandRows = 512;

@@ -312,15 +312,17 @@ TEST(Cli, ABadPresetAmongGoodOnesBakesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// Every phase after the simulation says when it starts: a default bake is never silent for seconds.
+// Every phase after the simulation says when it starts, and the texture set each LOD's maps: a
+// default bake is never silent for seconds.
 TEST(Cli, EveryPhaseOfABakeIsLogged) {
   TempDir dir;
   writeText(dir.path() / "small.yaml", std::string(kSmallPreset) + "texture: {size: 256}\n");
   const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "out").string()});
   ASSERT_EQ(result.exit_status, 0) << result.output;
   std::size_t at = 0;
-  for (const char* phase : {"small: meshes and collision hulls (", "small: the texture set (",
-                            "small: writing the meshes", "small: rendering ("}) {
+  for (const char* phase :
+       {"small: meshes and collision hulls (", "small: the texture set (", "small: texture set: 1 LOD unwrapped (",
+        "small: texture set: LOD0's maps, 256 × 256 (1 of 1, ", "small: writing the meshes", "small: rendering ("}) {
     const std::size_t found = result.output.find(phase, at);
     EXPECT_NE(found, std::string::npos) << phase << " (in order)\n" << result.output;
     if (found != std::string::npos) at = found;

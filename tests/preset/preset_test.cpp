@@ -325,8 +325,9 @@ TEST(Preset, MapsFollowACoarserResolution) {
   EXPECT_EQ(mapSizeAtResolution(2048, 96, 384), 2048);  // a finer bake keeps the preset's budget
   EXPECT_EQ(mapSizeAtResolution(512, 96, 8), 256);
 
-  const std::string textured = "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n"
-                               "grid: {size: [1, 1, 1], resolution: 96}\ntexture: {size: 2048}\n";
+  const std::string textured =
+      "rockbake: 1\nname: p\nshape: {box: {size: [1, 1, 1]}}\ntime: 1\n"
+      "grid: {size: [1, 1, 1], resolution: 96}\ntexture: {size: 2048}\n";
   PresetOverrides preview;
   preview.resolution = 24;
   const Preset p = parsePreset(textured, "p.yaml", preview);

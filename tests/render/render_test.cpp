@@ -318,7 +318,8 @@ TEST(RenderTest, MissingPovrayNamesThePackage) {
 TEST(RenderTest, AStillRendersInBandsOfRowsOnePovrayEach) {
   test::TempDir dir;
   const auto log = dir.path() / "povray.log";
-  test::writeText(dir.path() / "povray", "#!/bin/sh\necho \"$*\" >> '" + log.string() + "'\nexec /usr/bin/povray \"$@\"\n");
+  test::writeText(dir.path() / "povray",
+                  "#!/bin/sh\necho \"$*\" >> '" + log.string() + "'\nexec /usr/bin/povray \"$@\"\n");
   std::filesystem::permissions(dir.path() / "povray", std::filesystem::perms::owner_all);
   const char* old = std::getenv("PATH");
   const std::string saved = old ? old : "";
@@ -349,8 +350,8 @@ TEST(RenderTest, PovrayArgumentsAreExplicit) {
   job.antialias = 0.3;
   job.threads = 2;
   const auto args = povrayArguments(job);
-  const std::vector<std::string> expected = {"povray", "-D",    "-V",    "-P",  "+Iscene.pov", "+Orender.exr",
-                                             "+FE",    "+W320", "+H240", "+Q9", "+A0.3",       "-J", "+WT2", "+BS32"};
+  const std::vector<std::string> expected = {"povray", "-D",    "-V",  "-P",    "+Iscene.pov", "+Orender.exr", "+FE",
+                                             "+W320",  "+H240", "+Q9", "+A0.3", "-J",          "+WT2",         "+BS32"};
   EXPECT_EQ(args, expected);
   // A band: POV-Ray's rows count from 1 and its end row is inclusive.
   job.first_row = 64;
