@@ -141,7 +141,7 @@ json libraryIndexAssets(const fs::path& dir) {
                      "bake one first with `rockbake library LIBRARY.yaml -o " + dir.string() + "`");
   if (!index.problem.empty()) throw InputError({file.string()}, "", index.problem, "move it away and " + rewrite);
   if (!member(index.value, "assets").is_array())
-    throw InputError({file.string()}, "", "is not a library index (no \"assets\" list)", "move it away and " + rewrite);
+    throw InputError({file.string()}, "", "is not a library index (no \"assets\" list)", rewrite);
   return index.value["assets"];
 }
 

@@ -200,6 +200,7 @@ try {
 
   // A dangling .review.lock link: a save creates nothing outside OUT.
   const target = path.join(elsewhere, 'created-by-lock');
+  fs.rmSync(path.join(out, '.review.lock'), { force: true });  // a save before made a real one
   fs.symlinkSync(target, path.join(out, '.review.lock'));
   r = await request(url, 'POST', '/api/review', { body: { asset: 'a', status: 'approved' } });
   check(r.status === 409 && !fs.existsSync(target) && /review\.lock/.test(r.json?.error || ''),
