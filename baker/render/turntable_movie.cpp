@@ -267,7 +267,7 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
                      " s and was killed; check that `" + job.executable +
                      " -version` answers, or set render.turntable.frames: 0. FFmpeg said:\n" +
                      lastLines(messages, 4000));
-  if (exited)
+  if (exited && !ok)
     throw MovieError(where + " exited 0 but wrote no MP4 (no ftyp box at its start); nothing was kept: check that `" +
                      job.executable + "` is FFmpeg (`" + job.executable + " -version`). It said:\n" +
                      lastLines(messages, 4000));
