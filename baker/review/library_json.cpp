@@ -34,6 +34,7 @@ LibraryJson readLibraryJson(const fs::path& library_dir, const std::string& rela
     out.value = nlohmann::json::parse(in.read(0, in.size()), nullptr, false);
     if (out.value.is_discarded()) {
       out.value = nullptr;
+      out.not_json = true;
       out.problem = file.string() + " is not JSON";
     }
   } catch (const InputError& e) {

@@ -18,9 +18,10 @@ inline constexpr std::uint64_t kMaxLibraryJsonBytes = std::uint64_t(16) << 20;  
 inline constexpr std::uint64_t kMaxAssetJsonBytes = std::uint64_t(4) << 20;     // an asset's own
 
 struct LibraryJson {
-  bool present = false;  // false: there is no such file (value is null, problem empty)
-  nlohmann::json value;  // the parsed file, or null
-  std::string problem;   // why it was not read: names the file and what is wrong
+  bool present = false;   // false: there is no such file (value is null, problem empty)
+  nlohmann::json value;   // the parsed file, or null
+  std::string problem;    // why it was not read: names the file and what is wrong
+  bool not_json = false;  // read whole, but not JSON
 };
 
 // `relative` (a path under `library_dir`) read and parsed, or why not.

@@ -66,9 +66,10 @@ nlohmann::json readReviewFile(const fs::path& dir) {
   const fs::path file = dir / kReviewFile;
   const LibraryJson read = readLibraryJson(dir, kReviewFile, kMaxLibraryJsonBytes);
   if (!read.present) return {{"rockbake_review", 1}, {"assets", nlohmann::json::object()}};
-  if (!read.problem.empty()) throw std::runtime_error(read.problem + "; move it away and review again");
   const nlohmann::json& j = read.value;
-  if (!j.is_object() || !j.contains("assets") || !j["assets"].is_object())
+  if (!read.problem.empty() && !read.not_json)
+    throw std::runtime_error(read.problem + "; move it away and review again");
+  if (read.not_json || !j.is_object() || !j.contains("assets") || !j["assets"].is_object())
     throw std::runtime_error(file.string() +
                              " is not a review file ({\"rockbake_review\": 1, \"assets\": {...}}); move it "
                              "away and review again");
