@@ -112,7 +112,7 @@ function drawGrid() {
   }
   const failed = $('failed');
   failed.replaceChildren();
-  const bad = list.filter((x) => x.status === 'failed' || x.status === 'damaged');
+  const bad = list.filter((x) => x.status === 'failed' || x.status === 'damaged' || x.status === 'unreadable');
   if (bad.length) {
     const h = document.createElement('h3');
     h.textContent = `Failed jobs (${bad.length})`;

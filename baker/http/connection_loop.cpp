@@ -107,8 +107,10 @@ std::pair<std::string, int> addressOf(const sockaddr_storage& address) {
 std::string plainAnswer(int status, const std::string& message) {
   const std::string body = errorResponse(status, message).body;
   return fmt::format(
-      "HTTP/1.1 {} {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{}", status,
-      reason(status), body.size(), body);
+      "HTTP/1.1 {} {}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n"
+      "X-Content-Type-Options: nosniff\r\nX-Frame-Options: DENY\r\n"
+      "Content-Security-Policy: default-src 'none'; frame-ancestors 'none'\r\n\r\n{}",
+      status, reason(status), body.size(), body);
 }
 
 struct ConnectionLoop::Impl {

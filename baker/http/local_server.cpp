@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <strings.h>
 #include <cerrno>
 #include <cstring>
 #include <regex>
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "http/byte_ranges.h"
 #include "http/caller_rules.h"
 #include "http/connection_loop.h"
 #include "http/json_body.h"
@@ -75,6 +77,54 @@ bool addedByHttplib(const std::string& name) {
   return name == "REMOTE_ADDR" || name == "REMOTE_PORT" || name == "LOCAL_ADDR" || name == "LOCAL_PORT";
 }
 
+// The request's Range header, taken out of its head before cpp-httplib parses
+// it: the layer answers ranges itself (http/byte_ranges.h), where cpp-httplib
+// would answer a malformed one 416 and send overlapping ones as often as asked.
+// Set for the worker's request while it is answered.
+thread_local std::optional<std::string> t_range;
+
+std::optional<std::string> takeRangeHeader(std::string& bytes) {
+  std::size_t head_end = bytes.find("\r\n\r\n");
+  if (head_end == std::string::npos) return std::nullopt;
+  std::optional<std::string> value;
+  int count = 0;
+  std::size_t line = bytes.find("\r\n") + 2;  // after the request line
+  while (line < head_end + 2) {
+    const std::size_t end = bytes.find("\r\n", line);
+    const std::size_t colon = bytes.find(':', line);
+    if (colon < end && colon - line == 5 && strncasecmp(bytes.data() + line, "range", 5) == 0) {
+      ++count;
+      value = bytes.substr(colon + 1, end - colon - 1);
+      bytes.erase(line, end + 2 - line);
+      head_end -= end + 2 - line;
+      continue;
+    }
+    line = end + 2;
+  }
+  if (count > 1) return std::nullopt;  // two Range headers: neither is meant, both ignored
+  return value;
+}
+
+// A quick look for a Range header among the request's headers (any case).
+bool containsRangeHeader(std::string_view bytes) {
+  const std::size_t head_end = std::min(bytes.find("\r\n\r\n"), bytes.size());
+  for (std::size_t i = bytes.find("\r\n"); i < head_end; i = bytes.find("\r\n", i + 2))
+    if (head_end - i > 8 && strncasecmp(bytes.data() + i + 2, "range", 5) == 0) return true;
+  return false;
+}
+
+// What every answer carries (docs/studio.md, "The server's promises"): no other
+// page may frame it (a click through an invisible frame would be the user's),
+// nor read it as a script, an image or a page of its own, and no type is guessed.
+void addHardeningHeaders(httplib::Response& res, bool has_policy) {
+  res.set_header("X-Content-Type-Options", "nosniff");
+  res.set_header("X-Frame-Options", "DENY");
+  res.set_header("Cross-Origin-Resource-Policy", "same-origin");
+  res.set_header("Referrer-Policy", "no-referrer");
+  // A page names its own policy (http/static_files.h); anything else runs nothing.
+  if (!has_policy) res.set_header("Content-Security-Policy", "default-src 'none'; frame-ancestors 'none'");
+}
+
 std::optional<std::string> headerOf(const httplib::Request& req, const char* name) {
   if (!req.has_header(name)) return std::nullopt;
   return req.get_header_value(name);
@@ -117,12 +167,11 @@ struct LocalServer::Impl {
     core.Delete(any, dispatch);
     core.Options(any, dispatch);
     core.set_payload_max_length(limits.max_body_bytes);
-    // What cpp-httplib refuses itself (a malformed request line, 400; a bad Range, 416) gets a message too.
+    // What cpp-httplib refuses itself (a malformed request line, 400) gets a message too.
     core.set_error_handler([](const httplib::Request&, httplib::Response& res) {
       if (!res.body.empty()) return;
-      const std::string message =
-          res.status == 416 ? "the Range header asks for bytes the answer does not have" : "a malformed request";
-      res.set_content(errorResponse(res.status, message).body, "application/json");
+      addHardeningHeaders(res, false);
+      res.set_content(errorResponse(res.status, "a malformed request").body, "application/json");
     });
   }
 
@@ -159,12 +208,16 @@ void LocalServer::Impl::answer(const httplib::Request& req, httplib::Response& r
     response = errorResponse(refusal->status(), refusal->what());
   else
     response = route(request);
-  // A 200 to a request with a Range header is left for cpp-httplib to number:
-  // it cuts the body to the range and answers 206 only when the status is
-  // still unset, and a 200 with part of a file reads as the whole file (a
-  // video seeking in the review page).
-  res.status = response.status == 200 && !req.ranges.empty() ? -1 : response.status;
-  for (const auto& [name, value] : response.headers) res.set_header(name, value);
+  // A 200 to a GET with a Range header is cut to the ranges here (a video
+  // seeking in the review page); a HEAD gets the whole answer's headers.
+  if (response.status == 200 && req.method == "GET" && t_range) answerRanges(response, *t_range);
+  res.status = response.status;
+  bool has_policy = false;
+  for (const auto& [name, value] : response.headers) {
+    res.set_header(name, value);
+    has_policy = has_policy || name == "Content-Security-Policy";
+  }
+  addHardeningHeaders(res, has_policy);
   res.set_content(std::move(response.body), response.content_type);
 }
 
@@ -206,7 +259,16 @@ Response LocalServer::Impl::route(const Request& received) const {
 
 std::string LocalServer::Impl::answerBytes(const RawRequest& raw) {
   try {
-    BufferStream stream(raw);
+    // Only a request that has a Range header is copied, to take it out.
+    std::string edited;
+    RawRequest request = raw;
+    t_range.reset();
+    if (containsRangeHeader(raw.bytes)) {
+      edited.assign(raw.bytes);
+      t_range = takeRangeHeader(edited);
+      request.bytes = edited;
+    }
+    BufferStream stream(request);
     bool connection_closed = false;
     core.process_request(stream, /*close_connection=*/true, connection_closed, nullptr);
     return std::move(stream.output());

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/sha256.h"
 #include "http/json_body.h"
 
 namespace rockbake::http {
@@ -22,6 +23,47 @@ const char* contentType(const fs::path& file) {
   if (ext == ".mp4") return "video/mp4";
   if (ext == ".glb") return "model/gltf-binary";
   return "application/octet-stream";
+}
+
+// A file of OUT shown in place: only types no browser runs (an image, a movie,
+// a model, JSON). Anything else (a planted page, SVG or script) is a download.
+const char* inertType(const fs::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext == ".png") return "image/png";
+  if (ext == ".mp4") return "video/mp4";
+  if (ext == ".glb") return "model/gltf-binary";
+  if (ext == ".json") return "application/json";
+  return nullptr;
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* const digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? std::uint8_t(bytes[i + k]) : 0);
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// 'sha256-…' for each inline <script> of the page (the import map), so the
+// policy lets those run and no other inline script.
+std::string inlineScriptHashes(const std::string& html) {
+  std::string hashes;
+  for (std::size_t at = html.find("<script"); at != std::string::npos; at = html.find("<script", at + 1)) {
+    const std::size_t open_end = html.find('>', at);
+    if (open_end == std::string::npos) break;
+    if (html.find(" src=", at) < open_end) continue;
+    const std::size_t close = html.find("</script>", open_end);
+    if (close == std::string::npos) break;
+    const std::string hex = sha256Hex(std::string_view(html).substr(open_end + 1, close - open_end - 1));
+    std::string digest;
+    for (std::size_t i = 0; i + 1 < hex.size(); i += 2) digest += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+    hashes += " 'sha256-" + base64(digest) + "'";
+  }
+  return hashes;
 }
 
 }  // namespace
@@ -56,6 +98,37 @@ std::optional<Response> fileResponse(const fs::path& root, const std::string& re
   } catch (const InputError&) {
     return std::nullopt;
   }
+}
+
+std::optional<Response> pageResponse(const fs::path& root, const std::string& relative) {
+  std::optional<Response> page = fileResponse(root, relative);
+  if (!page) return std::nullopt;
+  // Scripts, styles, data and media from this server only (three.js makes blob:
+  // URLs for a GLB's images); no plug-ins, no other page framing it.
+  page->headers.emplace_back("Content-Security-Policy",
+                             "default-src 'self'; script-src 'self'" + inlineScriptHashes(page->body) +
+                                 "; style-src 'self'; img-src 'self' blob: data:; media-src 'self' blob:; "
+                                 "connect-src 'self' blob: data:; worker-src 'self' blob:; object-src 'none'; "
+                                 "base-uri 'none'; form-action 'self'; frame-ancestors 'none'");
+  return page;
+}
+
+Route libraryFilesRoute(const std::string& pattern, const fs::path& root) {
+  return {"GET", pattern, [root](const Request& request) {
+            std::optional<Response> file = fileResponse(root, request.matches.at(1));
+            if (!file) throw HttpError(404, "not found: " + request.path);
+            const std::string name = fs::path(request.matches.at(1)).filename().string();
+            if (const char* type = inertType(name)) {
+              file->content_type = type;
+            } else {
+              file->content_type = "application/octet-stream";
+              file->headers.emplace_back("Content-Disposition", "attachment");
+            }
+            // Opened as a page all the same (an old browser, a save and reopen), it runs nothing.
+            file->headers.emplace_back("Content-Security-Policy",
+                                       "sandbox; default-src 'none'; frame-ancestors 'none'");
+            return std::move(*file);
+          }};
 }
 
 Route staticRoute(const std::string& pattern, const fs::path& root) {

@@ -25,7 +25,18 @@ std::optional<std::filesystem::path> fileUnder(const std::filesystem::path& root
 // or nothing when fileUnder finds none or it cannot be read.
 std::optional<Response> fileResponse(const std::filesystem::path& root, const std::string& relative);
 
+// fileResponse with the page's Content-Security-Policy: scripts, styles and
+// media from this server only, its own inline scripts by hash, no framing.
+std::optional<Response> pageResponse(const std::filesystem::path& root, const std::string& relative);
+
 // A GET route: `pattern`'s first group is the path under `root`; 404 when no such file.
 Route staticRoute(const std::string& pattern, const std::filesystem::path& root);
+
+// staticRoute for files nobody vetted (a baked library's OUT, where anyone may
+// have put a file): PNG, MP4, GLB and JSON are shown with their types, anything
+// else (HTML, SVG, scripts) is an attachment of type application/octet-stream,
+// and every one is sandboxed (Content-Security-Policy: sandbox), so a planted
+// page never runs as this server's own.
+Route libraryFilesRoute(const std::string& pattern, const std::filesystem::path& root);
 
 }  // namespace rockbake::http

@@ -438,6 +438,8 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 // The recipe. A phase to add is one more line here, a function above, and its seconds in BakeTimings.
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   Bake bake(preset, options);
+  // A helper program that is missing is said before the simulation, not after it.
+  if (options.mesh && options.render) requireHelperPrograms(preset.render.turntable_frames > 0);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
   auto [meshes, collision] = meshAndCollide(bake, weathered);
   const std::optional<TextureSet> textures = texture(bake, weathered, meshes);

@@ -3,8 +3,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <system_error>
 #include <thread>
 
@@ -205,6 +208,40 @@ RenderOutputs renderAsset(const AssetMeshes& meshes, const RenderRequest& reques
 
 RenderOutputs rerenderAsset(const RenderRequest& request) {
   return renderScenes(nullptr, request);
+}
+
+namespace {
+
+// True when `name` is an executable file in a folder of PATH (as execvp finds it).
+bool onPath(const std::string& name) {
+  if (name.find('/') != std::string::npos) return access(name.c_str(), X_OK) == 0;
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  for (std::size_t start = 0; start <= dirs.size();) {
+    std::size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    const std::string dir = end > start ? dirs.substr(start, end - start) : ".";
+    const std::filesystem::path candidate = std::filesystem::path(dir) / name;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(candidate, ec) && access(candidate.c_str(), X_OK) == 0) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+}  // namespace
+
+void requireHelperPrograms(bool turntable_movie) {
+  const PovrayJob povray;
+  if (!onPath(povray.executable))
+    throw PovrayError("POV-Ray ('" + povray.executable +
+                      "') was not found on PATH; rendering needs it: install it with: apt-get install povray "
+                      "(Debian package 'povray'), or bake with --no-render");
+  const TurntableMovieJob movie;
+  if (turntable_movie && !onPath(movie.executable))
+    throw MovieError("FFmpeg ('" + movie.executable +
+                     "') was not found on PATH; turntable movies need it: install it with: apt-get install "
+                     "ffmpeg (Debian package 'ffmpeg'), or set render.turntable.frames: 0");
 }
 
 }  // namespace rockbake

@@ -63,4 +63,10 @@ RenderOutputs renderAsset(const AssetMeshes& meshes, const RenderRequest& reques
 // the simulation nor the meshes are needed. Same outputs as renderAsset.
 RenderOutputs rerenderAsset(const RenderRequest& request);
 
+// Checks that POV-Ray (and FFmpeg, for a turntable movie) can be found on PATH
+// before any work starts, so that a missing one is said in the first second,
+// not after the simulation (docs/rendering.md, "Helper programs"). Throws
+// PovrayError or MovieError with the messages running them would give.
+void requireHelperPrograms(bool turntable_movie);
+
 }  // namespace rockbake

@@ -3,13 +3,19 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
 #include <cstring>
+#include <fstream>
+#include <mutex>
+#include <optional>
 #include <system_error>
 #include <thread>
 
@@ -53,6 +59,7 @@ Child startFfmpeg(const std::vector<std::string>& args) {
   int in_pipe[2], out_pipe[2], report[2];
   if (pipe2(in_pipe, O_CLOEXEC) != 0 || pipe2(out_pipe, O_CLOEXEC) != 0 || pipe2(report, O_CLOEXEC) != 0)
     throw MovieError(std::string("cannot run FFmpeg: pipe failed: ") + std::strerror(errno));
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     const int e = errno;
@@ -61,6 +68,10 @@ Child startFfmpeg(const std::vector<std::string>& args) {
   }
   if (pid == 0) {  // only async-signal-safe calls until exec
     setpgid(0, 0);
+    // Its own process group keeps a Ctrl-C for the baker alone; the death
+    // signal ends FFmpeg with the baker, killed or not, so none is left running.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(127);
     dup2(in_pipe[0], 0);
     dup2(out_pipe[1], 1);
     dup2(out_pipe[1], 2);
@@ -116,6 +127,62 @@ bool writeAll(int fd, const std::string& bytes) {
   return ok;
 }
 
+// Kills FFmpeg's process group when it makes no progress for kFfmpegStallSeconds
+// (a frame not taken, or no exit once its input is closed) or the cancel flag
+// is set, whichever comes first; checked every 100 ms while FFmpeg runs, so a
+// Ctrl-C does not wait for the next frame.
+class Watchdog {
+ public:
+  Watchdog(pid_t group, const std::atomic<bool>* cancel) : group_(group), cancel_(cancel) {
+    progress();
+    thread_ = std::thread([this] { watch(); });
+  }
+  ~Watchdog() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+  void progress() {
+    std::lock_guard lock(mutex_);
+    deadline_ = std::chrono::steady_clock::now() + std::chrono::seconds(kFfmpegStallSeconds);
+  }
+  bool stalled() const { return stalled_; }
+  bool cancelled() const { return cancelled_; }
+
+ private:
+  void watch() {
+    std::unique_lock lock(mutex_);
+    while (!done_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(100));
+      if (done_) break;
+      const bool cancel = cancel_ && cancel_->load();
+      if (cancel || std::chrono::steady_clock::now() > deadline_) {
+        (cancel ? cancelled_ : stalled_) = true;
+        kill(-group_, SIGKILL);
+        break;
+      }
+    }
+  }
+  pid_t group_;
+  const std::atomic<bool>* cancel_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::chrono::steady_clock::time_point deadline_;
+  bool done_ = false;
+  std::atomic<bool> stalled_{false}, cancelled_{false};
+  std::thread thread_;
+};
+
+// What FFmpeg wrote is an MP4 when its first box is `ftyp` (ISO/IEC 14496-12 §4.3).
+bool startsWithFtyp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char head[8] = {};
+  return in.read(head, sizeof head) && std::string_view(head + 4, 4) == "ftyp";
+}
+
 }  // namespace
 
 std::array<int, 2> movieFrameSize(int width, int height) {
@@ -145,6 +212,7 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
   const std::filesystem::path tmp = job.target.parent_path() / ("." + job.target.stem().string() + ".ffmpeg.mp4");
   const std::vector<std::string> args = ffmpegArguments(job, width, height, tmp);
   Child child = startFfmpeg(args);
+  std::optional<Watchdog> watchdog(std::in_place, child.pid, job.cancel);
 
   std::string messages;
   std::thread reader([&] {
@@ -170,7 +238,8 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
         failure = job.frames[i].string() + " is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
                   ", the first frame " + std::to_string(first.width) + "x" + std::to_string(first.height);
       else if (!writeAll(child.in, paddedRgb(frame, width, height)))
-        break;  // FFmpeg stopped reading: its status and messages say why
+        break;  // FFmpeg stopped reading (or was killed): its status and messages say why
+      watchdog->progress();
     } catch (const std::exception& e) {
       failure = e.what();
     }
@@ -180,15 +249,28 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
   int status = 0;
   while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
   }
+  const bool stalled = watchdog->stalled();
+  cancelled = cancelled || watchdog->cancelled();
+  watchdog.reset();
+  kill(-child.pid, SIGKILL);  // anything FFmpeg started that outlived it
   reader.join();
   close(child.out);
 
   std::error_code ec;
   const std::string where = "FFmpeg (writing " + job.target.string() + ")";
-  const bool ok = !cancelled && failure.empty() && WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                  std::filesystem::is_regular_file(tmp, ec);
+  const bool exited = !cancelled && !stalled && failure.empty() && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  const bool ok = exited && std::filesystem::is_regular_file(tmp, ec) && startsWithFtyp(tmp);
   if (!ok) std::filesystem::remove(tmp, ec);
   if (cancelled) throw MovieError(where + " was cancelled and killed");
+  if (stalled)
+    throw MovieError(where + " made no progress for " + std::to_string(kFfmpegStallSeconds) +
+                     " s and was killed; check that `" + job.executable +
+                     " -version` answers, or set render.turntable.frames: 0. FFmpeg said:\n" +
+                     lastLines(messages, 4000));
+  if (exited && !ok)
+    throw MovieError(where + " exited 0 but wrote no MP4 (no ftyp box at its start); nothing was kept: check that `" +
+                     job.executable + "` is FFmpeg (`" + job.executable + " -version`). It said:\n" +
+                     lastLines(messages, 4000));
   if (!failure.empty()) throw MovieError("cannot make " + job.target.string() + ": " + failure);
   if (!ok)
     throw MovieError(where + " failed (" +

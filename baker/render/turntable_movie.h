@@ -23,18 +23,24 @@
 
 namespace rockbake {
 
+// FFmpeg is killed when it takes no frame, or does not exit once it has them
+// all, for this long (docs/rendering.md, "Helper programs").
+inline constexpr int kFfmpegStallSeconds = 30;
+
 struct TurntableMovieJob {
   std::vector<std::filesystem::path> frames;  // EXRs of one size, in order
   std::filesystem::path target;               // turntable.mp4; written atomically
   int fps = 24;                               // 1 … 120
   std::filesystem::path ocio_config = defaultOcioConfig();
   std::string executable = "ffmpeg";          // looked up on PATH
-  const std::atomic<bool>* cancel = nullptr;  // set: FFmpeg is killed, MovieError("cancelled")
+  const std::atomic<bool>* cancel = nullptr;  // set: FFmpeg is killed within 0.1 s, MovieError("cancelled")
 };
 
 // FFmpeg missing (the message names the Debian package), failing (with the tail
-// of its messages), or cancelled; or a frame unreadable. Nothing is left at
-// `target` or beside it.
+// of its messages), stalled, cancelled, or exiting 0 without writing an MP4
+// (no `ftyp` box first); or a frame unreadable. Nothing is left at `target` or
+// beside it, and no FFmpeg process: its process group is killed, and it dies
+// with the baker (PR_SET_PDEATHSIG).
 class MovieError : public std::runtime_error {
  public:
   explicit MovieError(const std::string& what) : std::runtime_error(what) {}

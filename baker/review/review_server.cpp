@@ -22,6 +22,17 @@ using json = nlohmann::json;
 const char* const kReviewShape =
     R"(expected {"asset": NAME, "status": "approved" | "needs-work" | "rejected", "note": TEXT})";
 
+// What index.json says, for a request: an index that cannot be read is the
+// library's to fix (409 with what to do), not the request's.
+template <typename F>
+auto withIndex(F read) {
+  try {
+    return read();
+  } catch (const InputError& e) {
+    throw http::HttpError(409, e.what());
+  }
+}
+
 // review.json's verdicts; a file that is not a review file is the caller's to fix (409).
 json verdictsOrRefuse(const ReviewStore& store) {
   try {
@@ -43,10 +54,10 @@ http::Response postReview(const ReviewOptions& options, ReviewStore& store, cons
                                    std::to_string(kMaxNoteBytes) + " are kept: shorten it");
   std::string input_hash;
   bool found = false;
-  for (const json& entry : libraryIndexAssets(options.library_dir))
-    if (entry.is_object() && entry.value("name", "") == asset) {
+  for (const json& entry : withIndex([&] { return libraryIndexAssets(options.library_dir); }))
+    if (entry.is_object() && entry.contains("name") && entry["name"] == asset) {
       found = true;
-      input_hash = entry.value("input_hash", "");
+      if (entry.contains("input_hash") && entry["input_hash"].is_string()) input_hash = entry["input_hash"];
     }
   if (!found)
     throw http::HttpError(404, "no asset '" + asset + "' in " + (options.library_dir / "index.json").string());
@@ -77,12 +88,14 @@ std::vector<http::Route> reviewRoutes(const ReviewOptions& options, ReviewStore&
   return {
       {"GET", "/api/assets",
        [&store, out](const http::Request&) {
-         return http::jsonResponse({{"assets", assetSummaries(out, verdictsOrRefuse(store))}});
+         const json verdicts = verdictsOrRefuse(store);
+         return http::jsonResponse({{"assets", withIndex([&] { return assetSummaries(out, verdicts); })}});
        }},
       {"GET", R"(/api/assets/([^/]+))",
        [&store, out](const http::Request& request) {
          const std::string name = request.matches.at(1);
-         const auto detail = assetDetail(out, name, verdictsOrRefuse(store));
+         const json verdicts = verdictsOrRefuse(store);
+         const auto detail = withIndex([&] { return assetDetail(out, name, verdicts); });
          if (!detail) throw http::HttpError(404, "no asset '" + name + "' in " + (out / "index.json").string());
          return http::jsonResponse(*detail);
        }},
@@ -90,13 +103,13 @@ std::vector<http::Route> reviewRoutes(const ReviewOptions& options, ReviewStore&
        [&store, options](const http::Request& request) { return postReview(options, store, request); }},
       {"GET", "/",
        [options](const http::Request&) {
-         auto page = http::fileResponse(options.web_root, "index.html");
+         auto page = http::pageResponse(options.web_root, "index.html");
          if (!page) throw http::HttpError(404, "the review page is missing; install rockbake again");
          return *page;
        }},
       // The library's files: fileUnder keeps every answer inside OUT (no parent
-      // steps, encoded or not, and no link that leads out).
-      http::staticRoute(R"(/files/(.+))", out),
+      // steps, encoded or not, and no link that leads out); a planted page is a download.
+      http::libraryFilesRoute(R"(/files/(.+))", out),
       http::staticRoute(R"(/(review\.css|review\.js))", options.web_root),
       http::staticRoute(R"(/vendor/three/((build|examples/jsm)/.+))", options.three_root),
   };

@@ -157,7 +157,7 @@ std::vector<http::Route> studioRoutes(Studio& studio, const fs::path& web_root) 
       // The page and its pinned JavaScript; nothing else.
       {"GET", "/",
        [web_root](const Request&) {
-         std::optional<Response> page = http::fileResponse(web_root, "index.html");
+         std::optional<Response> page = http::pageResponse(web_root, "index.html");
          if (!page) throw HttpError(404, "the page is missing from " + web_root.string());
          return std::move(*page);
        }},

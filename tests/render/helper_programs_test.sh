@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Helper programs that are missing, lie or hang (docs/rendering.md, "Helper
+# programs"), through the real executable with fake ones first on PATH:
+# POV-Ray missing is said before the simulation; an FFmpeg that exits 0 with
+# garbage publishes no turntable.mp4; an FFmpeg that hangs is killed (its whole
+# process group) and the bake fails instead of waiting for ever.
+# Usage: helper_programs_test.sh ROCKBAKE
+set -euo pipefail
+rockbake=$1
+dir=$(mktemp -d "${TMPDIR:-/tmp}/rockbake-helpers-XXXXXX")
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "FAILED: $*" >&2; exit 1; }
+ok() { echo "ok: $*"; }
+
+cat > "$dir/small.yaml" <<'YAML'
+rockbake: 1
+name: small
+seed: 3
+grid: {size: [2.0, 2.0, 2.0], resolution: 24}
+shape:
+  box: {size: [1.5, 1.5, 1.5]}
+time: 0.5
+render: {width: 96, height: 72, antialias: 0, turntable: {frames: 2}}
+YAML
+mkdir "$dir/bin" "$dir/nopov"
+# PATH without povray: only what a shell script needs.
+for tool in sh bash cat sleep head; do ln -s "$(command -v $tool)" "$dir/nopov/$tool"; done
+
+# POV-Ray missing: refused before the simulation, naming the package.
+set +e
+PATH="$dir/nopov" "$rockbake" bake "$dir/small.yaml" -o "$dir/out1" > "$dir/log1" 2>&1
+status=$?
+set -e
+grep -q "POV-Ray ('povray') was not found on PATH" "$dir/log1" || fail "no POV-Ray message: $(cat "$dir/log1")"
+grep -qi "meshes" "$dir/log1" && fail "the simulation and meshes ran before POV-Ray was found missing: $(cat "$dir/log1")"
+[ "$status" -ne 0 ] || fail "a bake without POV-Ray exited 0"
+ok "POV-Ray missing: refused before the simulation (exit $status)"
+
+# An FFmpeg that writes garbage and exits 0: no turntable.mp4, nothing published.
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+for last; do :; done
+cat > /dev/null
+printf 'this is not a movie' > "$last"
+exit 0
+SH
+chmod +x "$dir/bin/ffmpeg"
+set +e
+PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out2" > "$dir/log2" 2>&1
+status=$?
+set -e
+[ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote garbage exited 0"
+[ -z "$(find "$dir/out2" -name turntable.mp4 2>/dev/null)" ] || fail "garbage was published as turntable.mp4"
+grep -q "ftyp" "$dir/log2" || fail "the message does not say what was wrong: $(cat "$dir/log2")"
+ok "an FFmpeg writing garbage: no turntable.mp4 (exit $status)"
+
+# An FFmpeg that hangs (and its child): killed after the stall limit, the bake fails.
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+sleep 424 &
+wait
+SH
+start=$(date +%s)
+set +e
+PATH="$dir/bin:$PATH" timeout 180 "$rockbake" bake "$dir/small.yaml" -o "$dir/out3" > "$dir/log3" 2>&1
+status=$?
+set -e
+elapsed=$(( $(date +%s) - start ))
+[ "$status" -ne 124 ] || fail "the bake waited for a hanging FFmpeg for 180 s"
+[ "$status" -ne 0 ] || fail "a bake whose FFmpeg hung exited 0"
+grep -q "made no progress" "$dir/log3" || fail "the message does not say FFmpeg hung: $(cat "$dir/log3")"
+sleep 1
+pgrep -f "sleep 424" > /dev/null && fail "FFmpeg's child is still running after the bake"
+[ -z "$(find "$dir/out3" -name turntable.mp4 2>/dev/null)" ] || fail "a turntable.mp4 was published"
+ok "a hanging FFmpeg: killed with its process group after ${elapsed} s, the bake failed (exit $status)"
+echo "helper programs: all checks passed"
