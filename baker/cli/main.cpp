@@ -622,7 +622,8 @@ int exitStatusOf(const std::function<int()>& what) {
     spdlog::error("{}", outOfMemoryMessage(nullptr));
     return kExitFailure;
   } catch (const std::exception& e) {
-    spdlog::error("{}", rockbake::escapeControlBytes(e.what()));
+    // Helper programs' messages (POV-Ray's parse error, FFmpeg's) come as lines: kept as lines.
+    spdlog::error("{}", rockbake::escapeControlBytesKeepingLines(e.what()));
     return kExitFailure;
   }
 }

@@ -17,6 +17,20 @@ std::string escapeControlBytes(const std::string& text) {
   return out;
 }
 
+std::string escapeControlBytesKeepingLines(const std::string& text) {
+  std::string out;
+  std::size_t start = 0;
+  const std::size_t end = !text.empty() && text.back() == '\n' ? text.size() - 1 : text.size();
+  while (start <= end) {
+    std::size_t nl = text.find('\n', start);
+    if (nl == std::string::npos || nl > end) nl = end;
+    if (start > 0) out += "\n  ";
+    out += escapeControlBytes(text.substr(start, nl - start));
+    start = nl + 1;
+  }
+  return out;
+}
+
 namespace {
 
 std::string formatMessage(const SourceLocation& where, const std::string& key_path, const std::string& problem,

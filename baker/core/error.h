@@ -18,6 +18,11 @@ struct SourceLocation {
 // may end up in a message, and must not reach the terminal raw.
 std::string escapeControlBytes(const std::string& text);
 
+// The same, but a message of several lines (a helper program's own words) stays several
+// lines: each line feed is kept and the next line indented by two spaces, so no line of it
+// can pass for a log line of ours. A trailing line feed is dropped.
+std::string escapeControlBytesKeepingLines(const std::string& text);
+
 // A problem with what the user gave us: a preset, a file it names, a flag.
 // what() is the full message: "file:line:col: key.path: problem. hint", with
 // control bytes in the file, key path and problem escaped.

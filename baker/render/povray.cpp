@@ -28,6 +28,21 @@ std::string tail(const std::string& text, int max_lines) {
   return text;
 }
 
+// What POV-Ray said that matters: what follows its last "====" section banner (the parse
+// error, the render's own messages), not the forty lines of options it prints first; its last
+// lines when it printed no banner.
+std::string povrayWords(const std::string& messages) {
+  std::size_t banner = std::string::npos;
+  for (std::size_t at = messages.find("===="); at != std::string::npos; at = messages.find("====", at + 4))
+    if (at == 0 || messages[at - 1] == '\n') banner = at;
+  if (banner != std::string::npos) {
+    const std::size_t after = messages.find('\n', banner);
+    const std::string words = after == std::string::npos ? "" : messages.substr(after + 1);
+    if (words.find_first_not_of(" \n") != std::string::npos) return tail(words, 30);
+  }
+  return tail(messages, 12);
+}
+
 std::string commandLine(const std::vector<std::string>& argv) {
   std::string s;
   for (const auto& a : argv) s += (s.empty() ? "" : " ") + a;
@@ -163,20 +178,20 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
   if (cancelled) throw PovrayError(where + " was cancelled and killed");
   if (timed_out)
     throw PovrayError(where + " timed out after " + std::to_string(job.timeout.count()) +
-                      " s and was killed; last messages:\n" + tail(messages, 30));
+                      " s and was killed; last messages:\n" + povrayWords(messages));
   if (WIFSIGNALED(status))
     throw PovrayError(where + " was killed by signal " + std::to_string(WTERMSIG(status)) + "; last messages:\n" +
-                      tail(messages, 30));
+                      povrayWords(messages));
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   // POV-Ray 3.7 reports parse errors on its output; be strict about both.
   const bool parse_error =
       messages.find("Parse Error") != std::string::npos || messages.find("Fatal error") != std::string::npos;
   if (code != 0 || parse_error)
     throw PovrayError(where + " failed (exit status " + std::to_string(code) + "); POV-Ray said:\n" +
-                      tail(messages, 30));
+                      povrayWords(messages));
   const auto out = job.output.is_absolute() ? job.output : job.working_dir / job.output;
   if (!std::filesystem::is_regular_file(out))
-    throw PovrayError(where + " exited 0 but wrote no " + out.string() + "; POV-Ray said:\n" + tail(messages, 30));
+    throw PovrayError(where + " exited 0 but wrote no " + out.string() + "; POV-Ray said:\n" + povrayWords(messages));
   return result;
 }
 

@@ -73,4 +73,26 @@ sleep 1
 pgrep -f "sleep 424" > /dev/null && fail "FFmpeg's child is still running after the bake"
 [ -z "$(find "$dir/out3" -name turntable.mp4 2>/dev/null)" ] || fail "a turntable.mp4 was published"
 ok "a hanging FFmpeg: killed with its process group after ${elapsed} s, the bake failed (exit $status)"
+# A POV-Ray that fails to parse: its own words, as lines, without the banner it prints first.
+cat > "$dir/bin/povray" <<'SH'
+#!/bin/sh
+i=0
+while [ $i -lt 40 ]; do echo "  Banner option line $i......On"; i=$((i + 1)); done
+echo "==== [Parsing...] =========================================================="
+echo "File 'scene.pov' line 3: Parse Error: No matching } in 'sphere', box found instead"
+echo "Fatal error in parser: Cannot parse input."
+echo "Render failed"
+exit 1
+SH
+chmod +x "$dir/bin/povray"
+set +e
+PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out4" > "$dir/log4" 2>&1
+status=$?
+set -e
+[ "$status" -ne 0 ] || fail "a bake whose POV-Ray failed exited 0"
+grep -q '\\x0a' "$dir/log4" && fail "POV-Ray's lines arrive escaped on one line: $(cat "$dir/log4")"
+grep -q "^  File 'scene.pov' line 3: Parse Error: No matching }" "$dir/log4" ||
+  fail "the parse error is not a line of its own: $(cat "$dir/log4")"
+grep -q "Banner option line" "$dir/log4" && fail "POV-Ray's banner buries its error: $(cat "$dir/log4")"
+ok "a POV-Ray parse error: shown as POV-Ray's own lines, without its banner (exit $status)"
 echo "helper programs: all checks passed"
