@@ -36,6 +36,54 @@ std::string recordedFingerprint(const fs::path& dir, const nlohmann::json& resol
   return sha256Hex(resolved.dump());
 }
 
+// The folder's hidden copy of what a re-render replaces, until it has succeeded.
+constexpr const char* kPreviousRenders = ".rerender-previous";
+
+// What a re-render writes into the folder, relative to it (render/render_asset.h).
+std::vector<fs::path> rerenderOutputs(const RenderRequest& r) {
+  const bool own = r.still_name == "render";
+  std::vector<fs::path> files = {own ? "scene.pov" : r.still_name + ".pov", r.still_name + ".exr",
+                                 r.still_name + ".png"};
+  if (own && r.params.turntable_frames > 0)
+    for (const char* f : {"turntable", "turntable_sheet.exr", "turntable_sheet.png", "turntable.mp4"})
+      files.emplace_back(f);
+  return files;
+}
+
+// Puts back what an interrupted re-render moved aside, over whatever it had written.
+void restorePrevious(const fs::path& dir) {
+  const fs::path previous = dir / kPreviousRenders;
+  if (!fs::is_directory(fs::symlink_status(previous))) return;
+  for (const auto& entry : fs::directory_iterator(previous)) {
+    const fs::path target = dir / entry.path().filename();
+    fs::remove_all(target);
+    fs::rename(entry.path(), target);
+  }
+  fs::remove_all(previous);
+}
+
+// A re-render commits whole or not at all, as a bake does: what it replaces is moved aside
+// first, and put back (over the new, partial outputs) when the render fails, so the folder and
+// its manifest keep agreeing. A re-render killed midway is undone by the next one.
+RenderOutputs renderOrRestore(const RenderRequest& request) {
+  const fs::path& dir = request.asset_dir;
+  restorePrevious(dir);
+  const fs::path previous = dir / kPreviousRenders;
+  fs::create_directory(previous);
+  const std::vector<fs::path> outputs = rerenderOutputs(request);
+  for (const fs::path& f : outputs)
+    if (fs::exists(fs::symlink_status(dir / f))) fs::rename(dir / f, previous / f.filename());
+  try {
+    RenderOutputs out = rerenderAsset(request);
+    fs::remove_all(previous);
+    return out;
+  } catch (...) {
+    for (const fs::path& f : outputs) fs::remove_all(dir / f);
+    restorePrevious(dir);
+    throw;
+  }
+}
+
 }  // namespace
 
 RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
@@ -79,7 +127,7 @@ RenderOutputs rerenderAssetFolder(const RerenderOptions& options) {
   if (asset.filename().empty()) asset = asset.parent_path();  // "out/goblin/"
   const AssetLock lock(asset);
   const AssetFolderSnapshot before = snapshotAssetFolder(dir);
-  RenderOutputs out = rerenderAsset(request);
+  RenderOutputs out = renderOrRestore(request);
   updateManifestOutputs(before, options.template_name.empty() ? request.params.template_name : options.template_name,
                         request.still_name);
   return out;

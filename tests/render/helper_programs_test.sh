@@ -95,4 +95,27 @@ grep -q "^  File 'scene.pov' line 3: Parse Error: No matching }" "$dir/log4" ||
   fail "the parse error is not a line of its own: $(cat "$dir/log4")"
 grep -q "Banner option line" "$dir/log4" && fail "POV-Ray's banner buries its error: $(cat "$dir/log4")"
 ok "a POV-Ray parse error: shown as POV-Ray's own lines, without its banner (exit $status)"
+# A re-render whose movie step fails commits nothing: the still, the frames, the old movie and
+# the manifest stay as the bake left them, so the manifest's hashes still hold.
+"$rockbake" bake "$dir/small.yaml" -o "$dir/out5" > "$dir/log5" 2>&1 || fail "the real tools' bake failed: $(cat "$dir/log5")"
+(cd "$dir/out5/small" && find . -type f | sort | xargs sha256sum) > "$dir/before5"
+cat > "$dir/bin/povray" <<'SH'
+#!/bin/sh
+exec /usr/bin/povray "$@" +A0.5
+SH
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+echo "Conversion failed!" >&2
+exit 1
+SH
+set +e
+PATH="$dir/bin:$PATH" "$rockbake" render "$dir/out5/small" > "$dir/log6" 2>&1
+status=$?
+set -e
+[ "$status" -ne 0 ] || fail "a re-render whose FFmpeg failed exited 0"
+grep -q "Conversion failed" "$dir/log6" || fail "FFmpeg's words are not shown: $(cat "$dir/log6")"
+(cd "$dir/out5/small" && find . -type f | sort | xargs sha256sum) > "$dir/after5"
+diff "$dir/before5" "$dir/after5" > "$dir/diff5" || fail "a failed re-render changed the folder: $(cat "$dir/diff5")"
+[ -z "$(find "$dir/out5/small" -name '.*')" ] || fail "a failed re-render left hidden files: $(find "$dir/out5/small" -name '.*')"
+ok "a re-render whose movie failed: the folder as the bake left it (exit $status)"
 echo "helper programs: all checks passed"
