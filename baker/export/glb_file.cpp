@@ -76,8 +76,10 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
       m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
     throw std::runtime_error("the " + m.name + " mesh lacks normals, colours or attributes, or has quads");
   const bool textured = maps.base_color >= 0 || maps.normal >= 0 || maps.orm >= 0;
-  if (textured && (m.uvs.size() != n || m.tangents.size() != n))
-    throw std::runtime_error("the " + m.name + " mesh has maps but no uvs or tangents");
+  // A LOD the texture set unwrapped carries its atlas whichever maps were made: the mask and the
+  // height map (which no glTF material names) are read through TEXCOORD_0 too.
+  const bool unwrapped = n > 0 && m.uvs.size() == n && m.tangents.size() == n;
+  if (textured && !unwrapped) throw std::runtime_error("the " + m.name + " mesh has maps but no uvs or tangents");
   std::vector<float> positions, normals, colors, mask;
   positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n), mask.reserve(4 * n);
   const float d_lo = durability_range[0], d_span = durability_range[1] - durability_range[0];
@@ -101,7 +103,7 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.attributes["POSITION"] = addFloatAccessor(model, positions, 3, true);
   prim.attributes["NORMAL"] = addFloatAccessor(model, normals, 3, false);
-  if (textured) {
+  if (unwrapped) {
     std::vector<float> uvs, tangents;
     uvs.reserve(2 * n), tangents.reserve(4 * n);
     for (std::size_t i = 0; i < n; ++i) {

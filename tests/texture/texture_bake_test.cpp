@@ -119,6 +119,31 @@ TEST(TextureBake, NoTexturesMakesNoneAndChangesTheInputHash) {
   EXPECT_EQ(readBytes(out / "small" / "rock.obj").find("\nvt "), std::string::npos);
 }
 
+// Maps no glTF material names (the mask, the height) are still read through the LOD's atlas: every
+// LOD whose mask map is written has TEXCOORD_0 in its GLB, and the OBJ its vt.
+TEST(TextureBake, AMaskOrHeightAloneStillGivesEveryLodItsUvs) {
+  TempDir dir;
+  std::string preset = texturedPreset();
+  preset.replace(preset.find("texture: {size: 256, ao_rays: 4}"),
+                 std::string("texture: {size: 256, ao_rays: 4}").size(),
+                 "texture: {size: 256, ao_rays: 4, maps: [mask, height]}");
+  writeText(dir.path() / "small.yaml", preset);
+  const fs::path out = dir.path() / "out";
+  const auto result = runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", out.string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  const fs::path asset = out / "small";
+  EXPECT_TRUE(fs::exists(asset / "textures" / "small_Height.exr"));
+  for (const auto& [glb, mask] :
+       {std::pair{"rock.glb", "small_Mask.png"}, std::pair{"rock_lod1.glb", "small_Mask_LOD1.png"},
+        std::pair{"rock_lod2.glb", "small_Mask_LOD2.png"}}) {
+    ASSERT_TRUE(fs::exists(asset / "textures" / mask)) << mask;
+    const std::string bytes = readBytes(asset / glb);
+    EXPECT_NE(bytes.find("TEXCOORD_0"), std::string::npos) << glb << " has no uvs for " << mask;
+    EXPECT_EQ(bytes.find("baseColorTexture"), std::string::npos) << glb;
+  }
+  EXPECT_NE(readBytes(asset / "rock.obj").find("\nvt "), std::string::npos);
+}
+
 TEST(TextureBake, LibraryAndResumeTakeNoTexturesToo) {
   TempDir dir;
   writeText(dir.path() / "small.yaml", texturedPreset());
