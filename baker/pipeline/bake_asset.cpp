@@ -269,6 +269,9 @@ Shapes meshAndCollide(Bake& bake, const Weathered& weathered) {
   return shapes;
 }
 
+// Below this share of a map covered by charts, the bake warns (a house atlas covers 40–70 %).
+constexpr double kLeastMapCoverage = 0.10;
+
 // The texture set in OUT/<name>/textures/ (docs/textures.md): every LOD unwrapped, its tangent frames, its maps
 // baked from the bake source, which is dropped here, used or not (it is the largest thing the meshes hold).
 std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::optional<MeshStageResult>& meshes) {
@@ -299,8 +302,25 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   };
   std::vector<AssetMeshes> lods{meshes->meshes};
   lods.insert(lods.end(), meshes->lods.begin(), meshes->lods.end());
-  TextureSet set = bakeTextureSet(lods, source, request);
+  TextureSet set;
+  try {
+    set = bakeTextureSet(lods, source, request);
+  } catch (const ChartsDoNotFit& e) {
+    throw InputError(preset.locate("texture.padding"), "texture.padding", e.what());
+  }
   bake.timings.texture = bake.clock.lap();
+  if (!set.sizes.empty() && set.sizes[0] < lodMapSize(*preset.texture, 0))
+    spdlog::info("{}: maps at {} × {}, not texture.size {}: the bake source's {} triangles fill no more", preset.name,
+                 set.sizes[0], set.sizes[0], preset.texture->size,
+                 source.rock.triangles.size() + source.colluvium.triangles.size());
+  // Gutters can take a small map: charts squeezed to a few texels bake nothing an engine can show.
+  for (std::size_t k = 0; k < set.coverage.size(); ++k)
+    if (set.coverage[k] < kLeastMapCoverage)
+      spdlog::warn(
+          "{}: LOD{}'s charts cover {:.1f} % of its {} × {} maps ({:.1f} texels per world unit): the gutters "
+          "between them (texture.padding {}) take the rest; lower texture.padding or raise texture.size",
+          preset.name, k, 100 * set.coverage[k], set.sizes[k], set.sizes[k], set.texels_per_unit[k],
+          preset.texture->padding);
   if (set.missed > 0) spdlog::debug("{}: {} texels found no bake source within the cage", preset.name, set.missed);
   return set;
 }

@@ -10,6 +10,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "texture/texture_params.h"
+
 namespace rockbake {
 namespace {
 
@@ -429,9 +431,9 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWor
   std::vector<std::array<Footprint, 4>> prints(charts.size()), best_prints;
   for (int round = 0; round < kRounds || fits == 0; ++round) {
     if (round > 4 * kRounds)
-      throw std::runtime_error("cannot pack " + std::to_string(charts.size()) + " UV charts into a " +
-                               std::to_string(size) + "² map with " + std::to_string(padding) +
-                               "-texel gutters (raise texture.size or lower texture.padding)");
+      throw ChartsDoNotFit("cannot pack " + std::to_string(charts.size()) + " UV charts into a " +
+                           std::to_string(size) + "² map with " + std::to_string(padding) +
+                           "-texel gutters (raise texture.size or lower texture.padding)");
     prints.resize(charts.size());
     tbb::parallel_for(std::size_t(0), charts.size(), [&](std::size_t i) {
       prints[i][0] = footprint(charts[i], place[i], density, grow);
@@ -445,7 +447,7 @@ double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWor
       fits = density;
       fits_height = height;
       best_spots = spots;
-      std::swap(best_prints, prints);  // the next round makes every footprint afresh
+      std::swap(best_prints, prints);    // the next round makes every footprint afresh
       if (height >= 0.98 * size) break;  // within 1 % of the density that fills the map
     } else {
       fails = density;

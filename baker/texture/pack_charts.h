@@ -44,7 +44,7 @@ struct PackWork {
 
 // Atlas uv follow glTF (v down; counter-clockwise seen with v up). Returns the texel density,
 // texels per world unit (0 when there is nothing to pack); `work`, when given, receives the
-// counts. Throws std::runtime_error if the charts fit at no density (more charts than texels
+// counts. Throws ChartsDoNotFit (texture_params.h) if the charts fit at no density (more charts than texels
 // with their gutters).
 double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWork* work = nullptr);
 

@@ -32,4 +32,11 @@ int lodMapSize(const TextureParams& params, int lod) {
   return std::max(params.size >> std::min(lod, 30), std::min(params.size, 256));
 }
 
+int usefulMapSize(std::size_t source_triangles) {
+  const double wanted = std::sqrt(double(source_triangles) * kUsefulTexelsPerSourceTriangle);
+  int size = 256;
+  while (size < wanted && size < 8192) size *= 2;
+  return size;
+}
+
 }  // namespace rockbake

@@ -12,11 +12,20 @@
 //   texture_set.h    all of it for an asset's LODs
 #pragma once
 
+#include <cstddef>
+#include <stdexcept>
 #include <string>
 
 #include "preset/preset.h"
 
 namespace rockbake {
+
+// Thrown when an atlas's charts fit its map at no density: the map is too small for the
+// gutters (texture.size against texture.padding), which the caller reports as bad input.
+class ChartsDoNotFit : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Throws std::invalid_argument naming the first field outside the range the preset's reader
 // allows (docs/preset-reference.md), for callers that fill TextureParams themselves.
@@ -32,5 +41,15 @@ std::string mapName(TextureMap map);
 // LodMapSize::Halved, size / 2^lod for the others, at least 256 (or size, when it is smaller);
 // with LodMapSize::Full, `params.size` for every LOD.
 int lodMapSize(const TextureParams& params, int lod);
+
+// Texels a map may spend per triangle of the bake source (the finest surface): 8 × 8. Beyond
+// that a map holds nothing the surface can give it (a 126-triangle rock baked at 8192 spends
+// half a million texels per triangle), only time and memory.
+inline constexpr double kUsefulTexelsPerSourceTriangle = 64.0;
+
+// The largest map size worth baking from a source of `source_triangles` triangles: the power
+// of two at least sqrt(source_triangles · kUsefulTexelsPerSourceTriangle), at least 256. The
+// texture set bakes each LOD at min(lodMapSize, this).
+int usefulMapSize(std::size_t source_triangles);
 
 }  // namespace rockbake

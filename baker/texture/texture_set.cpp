@@ -52,11 +52,14 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   const RockLook look(request.seed, radius, request.voxel_size, source.durability_range, request.varied);
   const double cage = params.cage > 0 ? params.cage : 0.1 * radius;
 
+  // No LOD's maps larger than the source can fill (texture_params.h).
+  const int useful = usefulMapSize(source.rock.triangles.size() + source.colluvium.triangles.size());
+  const auto mapSize = [&](std::size_t k) { return std::min(lodMapSize(params, int(k)), useful); };
+
   // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
   // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
   std::vector<UvAtlas> atlases(lods.size());
-  allSideBySide(lods.size(),
-                [&](std::size_t k) { atlases[k] = buildUvAtlas(lods[k], lodMapSize(params, int(k)), params.padding); });
+  allSideBySide(lods.size(), [&](std::size_t k) { atlases[k] = buildUvAtlas(lods[k], mapSize(k), params.padding); });
   releaseFreedHeap();
   step("atlases");
   const int lod_count = int(lods.size());
@@ -71,7 +74,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   if (!lods.empty()) order.push_back(0);
   for (const std::size_t k : order) {
     const std::string lod = "lod" + std::to_string(k);
-    const int size = lodMapSize(params, int(k));
+    const int size = mapSize(k);
     UvAtlas& atlas = atlases[k];
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
@@ -155,9 +158,10 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   for (UvAtlas& atlas : atlases) {
     set.charts.push_back(atlas.charts);
     set.texels_per_unit.push_back(atlas.texels_per_unit);
+    set.coverage.push_back(uvCoverage(atlas.meshes));
     set.lods.push_back(std::move(atlas.meshes));
   }
-  for (std::size_t k = 0; k < lods.size(); ++k) set.sizes.push_back(lodMapSize(params, int(k)));
+  for (std::size_t k = 0; k < lods.size(); ++k) set.sizes.push_back(mapSize(k));
   for (std::vector<TextureFile>& lod : files) set.files.insert(set.files.end(), lod.begin(), lod.end());
   return set;
 }

@@ -58,6 +58,7 @@ struct TextureSet {
   std::vector<std::size_t> charts;      // per LOD
   std::vector<int> sizes;               // per LOD: its maps' width and height, texels
   std::vector<double> texels_per_unit;  // per LOD: texel density, texels per world unit
+  std::vector<double> coverage;         // per LOD: the share of its maps its charts cover (uvCoverage)
   std::vector<TextureFile> files;       // LOD by LOD, LOD0 first, each LOD's in the order of params.maps
   std::size_t missed = 0;               // covered texels whose rays found no source within the cage
   // Per step ("lod0 rays", "lod0 normal", …): wall-clock seconds and the process's CPU

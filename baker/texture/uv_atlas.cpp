@@ -275,4 +275,17 @@ double texelDensity(const AssetMeshes& meshes, int size) {
   return 0.0;
 }
 
+double uvCoverage(const AssetMeshes& meshes) {
+  double covered = 0;
+  for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium}) {
+    if (m->uvs.size() != m->positions.size()) continue;
+    for (const auto& t : m->triangles) {
+      const auto &p = m->uvs[t[0]], &q = m->uvs[t[1]], &r = m->uvs[t[2]];
+      covered +=
+          0.5 * std::abs((double(q[0]) - p[0]) * (double(r[1]) - p[1]) - (double(q[1]) - p[1]) * (double(r[0]) - p[0]));
+    }
+  }
+  return covered;
+}
+
 }  // namespace rockbake

@@ -26,12 +26,16 @@ struct UvAtlas {
 
 // Triangle-only meshes (quads are ignored). `size`: the map's width and height, texels (1 …
 // 8192); `padding`: empty texels between charts (0 … 64). Throws std::invalid_argument on a size
-// or padding outside those ranges and std::runtime_error when the charts do not fit the map
+// or padding outside those ranges and ChartsDoNotFit (texture_params.h) when the charts do not fit the map
 // at any density.
 UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding);
 
 // The texel density of meshes with uvs in a `size`² map: the area-weighted median over the
 // triangles of sqrt(texel area / surface area), texels per world unit (0 without area).
 double texelDensity(const AssetMeshes& meshes, int size);
+
+// The share of the unit uv square the triangles of meshes with uvs cover, 0 … 1 (charts do not
+// overlap): what the gutters and the packing leave the surface.
+double uvCoverage(const AssetMeshes& meshes);
 
 }  // namespace rockbake

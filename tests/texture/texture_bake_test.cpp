@@ -144,6 +144,49 @@ TEST(TextureBake, AMaskOrHeightAloneStillGivesEveryLodItsUvs) {
   EXPECT_NE(readBytes(asset / "rock.obj").find("\nvt "), std::string::npos);
 }
 
+// Gutters that leave the charts almost no texels are warned about, naming the key, and gutters
+// the charts cannot fit beside are bad input; the house padding is neither.
+TEST(TextureBake, GuttersThatTakeTheMapAreWarnedAbout) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", texturedPreset());
+  const auto bake = [&](const std::string& padding) {
+    return runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "out").string(),
+                        "--no-render", "--set", "texture.padding=" + padding});
+  };
+  // Gutters the charts fit beside at no density: bad input at the key, exit 2, no asset.
+  const auto none = bake("64");
+  EXPECT_EQ(none.exit_status, 2) << none.output;
+  EXPECT_NE(none.output.find("--set texture.padding=64: texture.padding: cannot pack"), std::string::npos)
+      << none.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "out" / "small")) << "a half-written asset was left";
+  const auto wide = bake("48");
+  ASSERT_EQ(wide.exit_status, 0) << wide.output;
+  EXPECT_NE(wide.output.find("small: LOD0's charts cover "), std::string::npos) << wide.output;
+  EXPECT_NE(wide.output.find("(texture.padding 48) take the rest; lower texture.padding or raise texture.size"),
+            std::string::npos)
+      << wide.output;
+  const auto house = bake("8");
+  ASSERT_EQ(house.exit_status, 0) << house.output;
+  EXPECT_EQ(house.output.find("charts cover"), std::string::npos) << house.output;
+}
+
+// Maps are bounded by what the bake source can fill: a few hundred triangles do not get 8192² maps
+// (texture_params.h, usefulMapSize), and the log says why the size differs from texture.size.
+TEST(TextureBake, MapsAreBoundedByWhatTheSurfaceCanFill) {
+  TempDir dir;
+  writeText(dir.path() / "small.yaml", std::string(test::kSmallPreset) +
+                                           "mesh: {subdivision: 0, lods: []}\nexport: [glb]\n"
+                                           "texture: {size: 8192, lod_size: full, ao_rays: 4}\n");
+  const auto result =
+      runRockbake({"bake", (dir.path() / "small.yaml").string(), "-o", (dir.path() / "out").string(), "--no-render"});
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  const auto json = nlohmann::json::parse(readBytes(dir.path() / "out" / "small" / "asset.json"));
+  const int size = json["lods"][0]["map_size"].get<int>();
+  EXPECT_LE(size, 1024) << "a small source baked at the full 8192";
+  EXPECT_GE(size, 256);
+  EXPECT_NE(result.output.find("not texture.size 8192: the bake source's "), std::string::npos) << result.output;
+}
+
 TEST(TextureBake, LibraryAndResumeTakeNoTexturesToo) {
   TempDir dir;
   writeText(dir.path() / "small.yaml", texturedPreset());
