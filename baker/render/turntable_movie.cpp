@@ -183,6 +183,52 @@ bool startsWithFtyp(const std::filesystem::path& file) {
   return in.read(head, sizeof head) && std::string_view(head + 4, 4) == "ftyp";
 }
 
+// The ffprobe of the same FFmpeg: the path's sibling, or ffprobe on PATH.
+std::string ffprobeFor(const std::string& ffmpeg) {
+  const std::filesystem::path path(ffmpeg);
+  return path.has_parent_path() ? (path.parent_path() / "ffprobe").string() : std::string("ffprobe");
+}
+
+// The video frames ffprobe decodes in `file`; nullopt when there is no ffprobe to ask (the ftyp
+// check then stands alone) or it answers no number. Bounded like FFmpeg: killed with its group
+// when it says nothing for kFfmpegStallSeconds or `cancel` is set.
+std::optional<long> probedFrames(const std::string& ffprobe, const std::filesystem::path& file,
+                                 const std::atomic<bool>* cancel) {
+  Child child;
+  try {
+    child = startFfmpeg({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                         "stream=nb_read_frames", "-of", "csv=p=0", file.string()});
+  } catch (const MovieError&) {
+    return std::nullopt;
+  }
+  close(child.in);
+  std::string said;
+  {
+    Watchdog watchdog(child.pid, cancel);
+    char buf[1024];
+    while (true) {
+      const ssize_t n = read(child.out, buf, sizeof buf);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      if (said.size() < 4096) said.append(buf, std::size_t(n));
+      watchdog.progress();
+    }
+  }
+  close(child.out);
+  int status = 0;
+  while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  kill(-child.pid, SIGKILL);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  try {
+    std::size_t used = 0;
+    const long frames = std::stol(said, &used);
+    return said.find_first_not_of(" \r\n", used) == std::string::npos ? std::optional<long>(frames) : std::nullopt;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 std::array<int, 2> movieFrameSize(int width, int height) {
@@ -277,6 +323,14 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
                      (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
                                           : "exit status " + std::to_string(WEXITSTATUS(status))) +
                      "); FFmpeg said:\n" + lastLines(messages, 4000));
+  // An MP4 with fewer (or more) frames than were sent is no turntable: counted by ffprobe.
+  const std::optional<long> frames = probedFrames(ffprobeFor(job.executable), tmp, job.cancel);
+  if (frames && *frames != long(job.frames.size())) {
+    std::filesystem::remove(tmp, ec);
+    throw MovieError(where + " wrote " + std::to_string(*frames) + " frames, not the " +
+                     std::to_string(job.frames.size()) +
+                     " it was given (ffprobe's count); nothing was kept. It said:\n" + lastLines(messages, 4000));
+  }
   std::filesystem::rename(tmp, job.target, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);

@@ -73,6 +73,28 @@ sleep 1
 pgrep -f "sleep 424" > /dev/null && fail "FFmpeg's child is still running after the bake"
 [ -z "$(find "$dir/out3" -name turntable.mp4 2>/dev/null)" ] || fail "a turntable.mp4 was published"
 ok "a hanging FFmpeg: killed with its process group after ${elapsed} s, the bake failed (exit $status)"
+# An FFmpeg that writes a real MP4 of fewer frames than it was given and exits 0: ffprobe's count
+# refuses it, nothing is published.
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+n=$#
+i=0
+for a; do
+  i=$((i + 1))
+  if [ $i -eq $n ]; then set -- "$@" -frames:v 1 "$a"; else set -- "$@" "$a"; fi
+done
+shift $n
+exec /usr/bin/ffmpeg "$@"
+SH
+set +e
+PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out7" > "$dir/log7" 2>&1
+status=$?
+set -e
+[ "$status" -ne 0 ] || fail "a bake whose FFmpeg dropped frames exited 0"
+grep -q "wrote 1 frames, not the 2 it was given" "$dir/log7" || fail "no frame count in the message: $(cat "$dir/log7")"
+[ -z "$(find "$dir/out7" -name turntable.mp4 2>/dev/null)" ] || fail "a short movie was published"
+ok "an FFmpeg dropping frames: refused by ffprobe's count (exit $status)"
+
 # A POV-Ray that fails to parse: its own words, as lines, without the banner it prints first.
 cat > "$dir/bin/povray" <<'SH'
 #!/bin/sh
