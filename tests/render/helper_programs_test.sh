@@ -73,6 +73,28 @@ sleep 1
 pgrep -f "sleep 424" > /dev/null && fail "FFmpeg's child is still running after the bake"
 [ -z "$(find "$dir/out3" -name turntable.mp4 2>/dev/null)" ] || fail "a turntable.mp4 was published"
 ok "a hanging FFmpeg: killed with its process group after ${elapsed} s, the bake failed (exit $status)"
+# In a library, the first Ctrl-C stops the job while FFmpeg runs (not only between frames): the
+# library ends within seconds and takes the hanging FFmpeg's group with it.
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+sleep 425 &
+wait
+SH
+printf -- '- preset: small.yaml\n' > "$dir/lib.yaml"
+PATH="$dir/bin:$PATH" "$rockbake" library "$dir/lib.yaml" -o "$dir/out8" > "$dir/log8" 2>&1 &
+library=$!
+for _ in $(seq 1 600); do pgrep -f "sleep 425" > /dev/null && break; sleep 0.1; done
+pgrep -f "sleep 425" > /dev/null || fail "the library never reached FFmpeg: $(cat "$dir/log8")"
+kill -INT "$library"
+for _ in $(seq 1 100); do kill -0 "$library" 2> /dev/null || break; sleep 0.1; done
+if kill -0 "$library" 2> /dev/null; then
+  kill -KILL "$library"
+  fail "the library still ran 10 s after Ctrl-C while FFmpeg hung: $(cat "$dir/log8")"
+fi
+sleep 0.5
+pgrep -f "sleep 425" > /dev/null && fail "FFmpeg's child outlived the cancelled library"
+ok "Ctrl-C in a library while FFmpeg hangs: stopped within seconds, FFmpeg's group gone"
+
 # An FFmpeg that writes a real MP4 of fewer frames than it was given and exits 0: ffprobe's count
 # refuses it, nothing is published.
 cat > "$dir/bin/ffmpeg" <<'SH'
