@@ -9,6 +9,10 @@ configure=() targets=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --target)
+      if [ $# -lt 2 ]; then
+        echo "build: --target needs a target name" >&2
+        exit 2
+      fi
       targets+=(--target "$2")
       shift 2
       ;;

@@ -142,6 +142,13 @@ Framing frameRequest(std::string_view received, const FramingLimits& limits) {
       return refused(431, "the request's headers are over " + kib(limits.max_header_bytes));
     return {};
   }
+  // Lines end in CRLF and nowhere else. cpp-httplib also ends a line at a bare LF, so a header
+  // after one would reach it unseen by this framing and by the layer's own Range handling.
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    const bool bare_lf = block[i] == '\n' && (i == 0 || block[i - 1] != '\r');
+    const bool bare_cr = block[i] == '\r' && (i + 1 == block.size() || block[i + 1] != '\n');
+    if (bare_lf || bare_cr) return refused(400, "the request's head has a line break that is not CR LF");
+  }
   Framing f = readHeaders(block, limits);
   if (f.state == Framing::State::Refused) return f;
   if (f.chunked) return frameChunks(received.substr(f.header_bytes), limits, f);

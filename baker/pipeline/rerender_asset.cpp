@@ -1,6 +1,8 @@
 #include "pipeline/rerender_asset.h"
 
 #include <fstream>
+#include <stdexcept>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -67,18 +69,28 @@ void restorePrevious(const fs::path& dir) {
 // its manifest keep agreeing. A re-render killed midway is undone by the next one.
 RenderOutputs renderOrRestore(const RenderRequest& request) {
   const fs::path& dir = request.asset_dir;
-  restorePrevious(dir);
   const fs::path previous = dir / kPreviousRenders;
-  fs::create_directory(previous);
+  // Only a folder of ours is restored from; a link or a file by that name (left or planted) is
+  // removed, never followed: the renders must not be moved out of the asset.
+  const fs::file_status status = fs::symlink_status(previous);
+  if (fs::exists(status) && !fs::is_directory(status)) fs::remove(previous);
+  restorePrevious(dir);
+  if (!fs::create_directory(previous))
+    throw std::runtime_error("cannot set the renders aside: " + previous.string() + " could not be made anew");
   const std::vector<fs::path> outputs = rerenderOutputs(request);
-  for (const fs::path& f : outputs)
-    if (fs::exists(fs::symlink_status(dir / f))) fs::rename(dir / f, previous / f.filename());
+  bool rendering = false;
   try {
+    for (const fs::path& f : outputs)
+      if (fs::exists(fs::symlink_status(dir / f))) fs::rename(dir / f, previous / f.filename());
+    rendering = true;
     RenderOutputs out = rerenderAsset(request);
     fs::remove_all(previous);
     return out;
   } catch (...) {
-    for (const fs::path& f : outputs) fs::remove_all(dir / f);
+    // Before the render, every output is either set aside or was never there; after it started,
+    // what stands at an output's name is the render's, partial, and goes.
+    if (rendering)
+      for (const fs::path& f : outputs) fs::remove_all(dir / f);
     restorePrevious(dir);
     throw;
   }

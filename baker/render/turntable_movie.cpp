@@ -45,6 +45,12 @@ std::string paddedRgb(const RgbImage& image, int width, int height) {
   return bytes;
 }
 
+// A helper program that is not on PATH (exec's ENOENT).
+class ProgramNotFound : public MovieError {
+ public:
+  using MovieError::MovieError;
+};
+
 // FFmpeg as a child: we write its standard input to `in` and read its output
 // and errors from `out`. A close-on-exec pipe carries errno back if exec fails.
 struct Child {
@@ -91,9 +97,9 @@ Child startFfmpeg(const std::vector<std::string>& args) {
     close(out_pipe[0]);
     waitpid(pid, nullptr, 0);
     if (child_errno == ENOENT)
-      throw MovieError("FFmpeg ('" + args[0] +
-                       "') was not found on PATH; turntable movies need it: install it with: apt-get install "
-                       "ffmpeg (Debian package 'ffmpeg'), or set render.turntable.frames: 0");
+      throw ProgramNotFound("FFmpeg ('" + args[0] +
+                            "') was not found on PATH; turntable movies need it: install it with: apt-get install "
+                            "ffmpeg (Debian package 'ffmpeg'), or set render.turntable.frames: 0");
     throw MovieError("cannot run FFmpeg ('" + args[0] + "'): " + std::strerror(child_errno));
   }
   return {pid, in_pipe[1], out_pipe[0]};
@@ -189,20 +195,23 @@ std::string ffprobeFor(const std::string& ffmpeg) {
   return path.has_parent_path() ? (path.parent_path() / "ffprobe").string() : std::string("ffprobe");
 }
 
-// The video frames ffprobe decodes in `file`; nullopt when there is no ffprobe to ask (the ftyp
-// check then stands alone) or it answers no number. Bounded like FFmpeg: killed with its group
-// when it says nothing for kFfmpegStallSeconds or `cancel` is set.
-std::optional<long> probedFrames(const std::string& ffprobe, const std::filesystem::path& file,
-                                 const std::atomic<bool>* cancel) {
+// Why ffprobe does not vouch for `file` holding `frames` video frames: empty when it decodes
+// exactly that many, or when there is no ffprobe on PATH to ask (the ftyp check then stands
+// alone). Anything else it does (fails, hangs, answers no number) refuses the movie. Bounded like
+// FFmpeg: killed with its group when it says nothing for kFfmpegStallSeconds or `cancel` is set.
+std::string frameCountProblem(const std::string& ffprobe, const std::filesystem::path& file, std::size_t frames,
+                              const std::atomic<bool>* cancel) {
   Child child;
   try {
     child = startFfmpeg({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
                          "stream=nb_read_frames", "-of", "csv=p=0", file.string()});
-  } catch (const MovieError&) {
-    return std::nullopt;
+  } catch (const ProgramNotFound&) {
+    return "";
   }
   close(child.in);
   std::string said;
+  int status = 0;
+  bool stalled = false, cancelled = false;
   {
     Watchdog watchdog(child.pid, cancel);
     char buf[1024];
@@ -213,20 +222,28 @@ std::optional<long> probedFrames(const std::string& ffprobe, const std::filesyst
       if (said.size() < 4096) said.append(buf, std::size_t(n));
       watchdog.progress();
     }
+    // Reaped under the watchdog too: an ffprobe that closed its output and hangs is killed.
+    while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    stalled = watchdog.stalled(), cancelled = watchdog.cancelled();
   }
   close(child.out);
-  int status = 0;
-  while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  kill(-child.pid, SIGKILL);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return std::nullopt;
+  if (cancelled) return "ffprobe, counting its frames, was cancelled and killed";
+  if (stalled)
+    return "ffprobe, counting its frames, made no progress for " + std::to_string(kFfmpegStallSeconds) + " s";
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return "ffprobe cannot read it: " + lastLines(said, 2000);
+  std::size_t used = 0;
+  long counted = -1;
   try {
-    std::size_t used = 0;
-    const long frames = std::stol(said, &used);
-    return said.find_first_not_of(" \r\n", used) == std::string::npos ? std::optional<long>(frames) : std::nullopt;
+    counted = std::stol(said, &used);
   } catch (const std::exception&) {
-    return std::nullopt;
   }
+  if (counted < 0 || said.find_first_not_of(" \r\n", used) != std::string::npos)
+    return "ffprobe counts no frames in it: " + lastLines(said, 2000);
+  if (std::size_t(counted) != frames)
+    return "it holds " + std::to_string(counted) + " frames, not the " + std::to_string(frames) +
+           " it was given (ffprobe's count)";
+  return "";
 }
 
 }  // namespace
@@ -323,13 +340,12 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
                      (WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
                                           : "exit status " + std::to_string(WEXITSTATUS(status))) +
                      "); FFmpeg said:\n" + lastLines(messages, 4000));
-  // An MP4 with fewer (or more) frames than were sent is no turntable: counted by ffprobe.
-  const std::optional<long> frames = probedFrames(ffprobeFor(job.executable), tmp, job.cancel);
-  if (frames && *frames != long(job.frames.size())) {
+  // An MP4 with fewer (or more) frames than were sent, or one ffprobe cannot read, is no turntable.
+  if (const std::string problem = frameCountProblem(ffprobeFor(job.executable), tmp, job.frames.size(), job.cancel);
+      !problem.empty()) {
     std::filesystem::remove(tmp, ec);
-    throw MovieError(where + " wrote " + std::to_string(*frames) + " frames, not the " +
-                     std::to_string(job.frames.size()) +
-                     " it was given (ffprobe's count); nothing was kept. It said:\n" + lastLines(messages, 4000));
+    throw MovieError(where + " exited 0, but " + problem + "; nothing was kept. FFmpeg said:\n" +
+                     lastLines(messages, 4000));
   }
   std::filesystem::rename(tmp, job.target, ec);
   if (ec) {

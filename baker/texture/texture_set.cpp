@@ -54,12 +54,22 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
 
   // No LOD's maps larger than the source can fill (texture_params.h).
   const int useful = usefulMapSize(source.rock.triangles.size() + source.colluvium.triangles.size());
-  const auto mapSize = [&](std::size_t k) { return std::min(lodMapSize(params, int(k)), useful); };
+  std::vector<int> sizes(lods.size());
 
   // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
   // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
   std::vector<UvAtlas> atlases(lods.size());
-  allSideBySide(lods.size(), [&](std::size_t k) { atlases[k] = buildUvAtlas(lods[k], mapSize(k), params.padding); });
+  allSideBySide(lods.size(), [&](std::size_t k) {
+    const int asked = lodMapSize(params, int(k));
+    sizes[k] = std::min(asked, useful);
+    try {
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding);
+    } catch (const ChartsDoNotFit&) {
+      if (sizes[k] == asked) throw;
+      sizes[k] = asked;  // the gutters need the room the preset gave them
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding);
+    }
+  });
   releaseFreedHeap();
   step("atlases");
   const int lod_count = int(lods.size());
@@ -74,7 +84,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   if (!lods.empty()) order.push_back(0);
   for (const std::size_t k : order) {
     const std::string lod = "lod" + std::to_string(k);
-    const int size = mapSize(k);
+    const int size = sizes[k];
     UvAtlas& atlas = atlases[k];
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
@@ -161,7 +171,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     set.coverage.push_back(uvCoverage(atlas.meshes));
     set.lods.push_back(std::move(atlas.meshes));
   }
-  for (std::size_t k = 0; k < lods.size(); ++k) set.sizes.push_back(mapSize(k));
+  set.sizes = sizes;
   for (std::vector<TextureFile>& lod : files) set.files.insert(set.files.end(), lod.begin(), lod.end());
   return set;
 }

@@ -127,6 +127,9 @@ TEST(LocalServer, RefusesDeepLargeAndMalformedRequestsAndCarriesOn) {
   EXPECT_EQ(statusOf(answer), 200) << answer;
   EXPECT_EQ(bodyOf(answer), "[1,2]");
   EXPECT_EQ(statusOf(s.ask(chunked + "400\r\n")), 413);
+  // A header smuggled after a bare LF (cpp-httplib would read it; the layer would not): refused.
+  answer = s.ask("GET /hello/x HTTP/1.1\r\n" + s.host() + "X: a\nRange: bytes=0-,0-,0-\r\n\r\n");
+  EXPECT_EQ(statusOf(answer), 400) << answer;
   EXPECT_EQ(statusOf(s.get("/hello/x")), 200);
 }
 

@@ -19,6 +19,18 @@ TEST(RequestFraming, AGetEndsAtTheEmptyLine) {
   EXPECT_EQ(f.requestBytes(), request.size());
 }
 
+// A bare LF (or CR) in the head is refused: cpp-httplib would end a line there and read a header
+// (a Range, a Content-Length) the framing never saw.
+TEST(RequestFraming, LineBreaksOtherThanCrLfAreRefused) {
+  for (const std::string head :
+       {"GET / HTTP/1.1\r\nX: a\nRange: bytes=0-,0-\r\nHost: x\r\n\r\n",
+        "GET / HTTP/1.1\r\nX: a\rRange: bytes=0-\r\n\r\n", "GET / HTTP/1.1\nHost: x\r\n\r\n"}) {
+    const Framing f = frameRequest(head, kLimits);
+    EXPECT_EQ(f.state, Framing::State::Refused) << head;
+    EXPECT_EQ(f.status, 400) << head;
+  }
+}
+
 TEST(RequestFraming, APostEndsAfterItsContentLength) {
   const std::string head = "POST /api/edit HTTP/1.1\r\ncontent-LENGTH:  5 \r\nExpect: 100-continue\r\n\r\n";
   Framing f = frameRequest(head + "{\"a\"", kLimits);

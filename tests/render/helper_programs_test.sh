@@ -113,9 +113,26 @@ PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out7" > "$dir/
 status=$?
 set -e
 [ "$status" -ne 0 ] || fail "a bake whose FFmpeg dropped frames exited 0"
-grep -q "wrote 1 frames, not the 2 it was given" "$dir/log7" || fail "no frame count in the message: $(cat "$dir/log7")"
+grep -q "it holds 1 frames, not the 2 it was given" "$dir/log7" || fail "no frame count in the message: $(cat "$dir/log7")"
 [ -z "$(find "$dir/out7" -name turntable.mp4 2>/dev/null)" ] || fail "a short movie was published"
 ok "an FFmpeg dropping frames: refused by ffprobe's count (exit $status)"
+
+# An FFmpeg that writes an ftyp box and garbage after it, exit 0: ffprobe cannot read it, refused.
+cat > "$dir/bin/ffmpeg" <<'SH'
+#!/bin/sh
+for last; do :; done
+cat > /dev/null
+printf '\000\000\000\030ftypisom\000\000\002\000isomiso2 and then no movie at all' > "$last"
+exit 0
+SH
+set +e
+PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out9" > "$dir/log9" 2>&1
+status=$?
+set -e
+[ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote an ftyp box and garbage exited 0"
+grep -q "ffprobe" "$dir/log9" || fail "the message does not say ffprobe refused it: $(cat "$dir/log9")"
+[ -z "$(find "$dir/out9" -name turntable.mp4 2>/dev/null)" ] || fail "garbage behind an ftyp box was published"
+ok "an FFmpeg writing an ftyp box and garbage: refused by ffprobe (exit $status)"
 
 # A POV-Ray that fails to parse: its own words, as lines, without the banner it prints first.
 cat > "$dir/bin/povray" <<'SH'

@@ -102,7 +102,12 @@ try {
   // In chromium: a hostile page framing the review page gets nothing drawn; the planted page posts nothing.
   const hostile = http.createServer((req, res) => {
     res.writeHead(200, { 'Content-Type': 'text/html' });
-    res.end(`<!doctype html><iframe id="f" src="${url}" style="opacity:0.01" width="800" height="600"></iframe>`);
+    // /inner and /control: the same check on a page that allows framing, so that the check
+    // below can tell "nothing in the frame" from "the frame could not be read".
+    if (req.url === '/inner') res.end('<!doctype html><div id="filters">a framable page</div>');
+    else if (req.url === '/control')
+      res.end(`<!doctype html><iframe src="http://127.0.0.1:${hostile.address().port}/inner" width="800" height="600"></iframe>`);
+    else res.end(`<!doctype html><iframe id="f" src="${url}" style="opacity:0.01" width="800" height="600"></iframe>`);
   });
   await new Promise((resolve) => hostile.listen(0, '127.0.0.1', resolve));
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rockbake-chromium-'));
@@ -114,11 +119,14 @@ try {
   try {
     const page = await browser.newPage();
     // "localhost" is another site than 127.0.0.1, as a web page the user visits would be.
-    await page.goto(`http://localhost:${hostile.address().port}/`, { waitUntil: 'load' });
-    await sleep(1500);
-    const framed = page.frames().find((f) => f !== page.mainFrame());
-    const grid = framed ? await framed.evaluate(() => !!document.querySelector('#filters')).catch(() => false) : false;
-    check(!grid, 'a page of another site framing the review page gets no review page in its frame');
+    const framedFilters = async (where) => {
+      await page.goto(`http://localhost:${hostile.address().port}${where}`, { waitUntil: 'load' });
+      await sleep(1500);
+      const framed = page.frames().find((f) => f !== page.mainFrame());
+      return framed ? await framed.evaluate(() => !!document.querySelector('#filters')).catch(() => false) : false;
+    };
+    check(await framedFilters('/control'), 'the frame check reads a framable page of another site (the control)');
+    check(!(await framedFilters('/')), 'a page of another site framing the review page gets no review page in its frame');
 
     const before = fs.existsSync(reviewFile) ? fs.readFileSync(reviewFile, 'utf8') : '';
     const visit = await browser.newPage();
