@@ -6,29 +6,13 @@
 
 #include <fmt/format.h>
 
+#include "http/header_text.h"
 #include "http/json_body.h"
 
 namespace rockbake::http {
-namespace {
 
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-// Decimal digits only, at most 18 of them (no overflow); nothing otherwise.
-std::optional<std::uint64_t> number(std::string_view s) {
-  if (s.empty() || s.size() > 18) return std::nullopt;
-  std::uint64_t n = 0;
-  for (char c : s) {
-    if (c < '0' || c > '9') return std::nullopt;
-    n = n * 10 + std::uint64_t(c - '0');
-  }
-  return n;
-}
-
-}  // namespace
+// Positions of at most 18 digits: sums of two stay far from overflow.
+constexpr std::size_t kMostDigits = 18;
 
 std::optional<std::vector<ByteRange>> byteRanges(const std::string& header, std::uint64_t size) {
   std::string_view rest = trimmed(header);
@@ -49,12 +33,12 @@ std::optional<std::vector<ByteRange>> byteRanges(const std::string& header, std:
       if (dash == std::string_view::npos) return std::nullopt;
       const std::string_view a = spec.substr(0, dash), b = spec.substr(dash + 1);
       if (a.empty()) {  // suffix: the last N bytes
-        const auto n = number(b);
+        const auto n = decimal(b, kMostDigits);
         if (!n) return std::nullopt;
         if (*n > 0 && size > 0) ranges.push_back({size - std::min(*n, size), size - 1});
       } else {
-        const auto first = number(a);
-        const auto last = b.empty() ? std::optional<std::uint64_t>(UINT64_MAX) : number(b);
+        const auto first = decimal(a, kMostDigits);
+        const auto last = b.empty() ? std::optional<std::uint64_t>(UINT64_MAX) : decimal(b, kMostDigits);
         if (!first || !last || *last < *first) return std::nullopt;
         if (*first < size) ranges.push_back({*first, std::min(*last, size - 1)});
       }

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "http/header_text.h"
+
 namespace rockbake::http {
 namespace {
 
@@ -15,29 +17,6 @@ Framing refused(int status, std::string message) {
   f.status = status;
   f.message = std::move(message);
   return f;
-}
-
-bool sameName(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
-         });
-}
-
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-// 1 to 19 decimal digits (no sign, no spaces inside), else nothing.
-std::optional<std::size_t> decimal(std::string_view s) {
-  if (s.empty() || s.size() > 19) return std::nullopt;
-  std::size_t value = 0;
-  for (const char c : s) {
-    if (c < '0' || c > '9') return std::nullopt;
-    value = value * 10 + std::size_t(c - '0');
-  }
-  return value;
 }
 
 std::string kib(std::size_t bytes) {
@@ -70,7 +49,7 @@ Framing readHeaders(std::string_view block, const FramingLimits& limits) {
     }
     if (sameName(name, "expect")) f.expect_continue = sameName(value, "100-continue");
     if (!sameName(name, "content-length")) continue;
-    const std::optional<std::size_t> n = decimal(value);
+    const std::optional<std::size_t> n = decimal(value, 19);
     if (!n || (length && *length != *n))
       return refused(400, "the request's Content-Length is not one whole number of bytes");
     length = n;
