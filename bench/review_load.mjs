@@ -20,10 +20,10 @@
 import crypto from 'node:crypto';
 import fs from 'node:fs';
 import http from 'node:http';
-import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 import { api, bakeLibrary, startReview, stopReview, writeLibrary } from '../tests/review/library.mjs';
+import { LOAD_ADDRESS, median, memoryWatch, probeWhile, sleep, slowClient, timed } from './load_probe.mjs';
 
 const args = process.argv.slice(2);
 const option = (name) => { const at = args.indexOf(name); return at >= 0 ? args.splice(at, 2)[1] : null; };
@@ -35,11 +35,8 @@ if (!rockbakes.length || rockbakes.some((r) => r.startsWith('--'))) {
   process.exit(2);
 }
 
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const PROBE_TIMEOUT_MS = 30000;
 const PHASE_LIMIT_MS = 45000;   // a phase's load is abandoned after this (it says so)
 const BUILD_LIMIT_MS = 240000;  // one build's whole run
-const LOAD_ADDRESS = '127.0.0.2';
 const ASSETS = ['small-s1', 'small-s2', 'tall-s1', 'tall-s2'];  // the library's baked assets
 const BIG_FILE = 'small-s1/big.bin';
 const BIG_SIZE = 4 * 1024 * 1024;
@@ -74,30 +71,7 @@ function loadPost(url, apiPath, body) {
   });
 }
 
-// A request that gives up after `ms` (status 0): a starved server must not stall the bench.
-async function timed(send, ms = PROBE_TIMEOUT_MS) {
-  const t0 = performance.now();
-  const status = await Promise.race([send().then((r) => r.status).catch(() => -1), sleep(ms).then(() => 0)]);
-  return { status, ms: performance.now() - t0 };
-}
 
-// A raw connection that sends `bytes` now, or a byte every `everyMs`; `done`
-// resolves with the status the server answered (0: none) when it closes or after `holdMs`.
-function slowClient(port, bytes, { everyMs = 0, holdMs = 20000 } = {}) {
-  const socket = net.connect({ port, host: '127.0.0.1', localAddress: LOAD_ADDRESS });
-  let text = '', at = 0, timer = null;
-  socket.on('error', () => {});
-  socket.on('data', (c) => { text += c.toString('latin1'); });
-  socket.on('connect', () => {
-    if (!everyMs) { socket.write(bytes); return; }
-    timer = setInterval(() => { if (at < bytes.length && !socket.destroyed) socket.write(bytes[at++]); }, everyMs);
-  });
-  return new Promise((resolve) => {
-    const finish = () => { clearInterval(timer); socket.destroy(); resolve(Number((text.match(/^HTTP\/1\.1 (\d{3})/) || [])[1] || 0)); };
-    socket.on('close', finish);
-    setTimeout(finish, holdMs);
-  });
-}
 
 // GET `filePath` with `range`, reading and counting what comes back (at most
 // `limitMs`); resolves with a line: the status, the bytes and how long it took.
@@ -124,30 +98,8 @@ function rangeRequest(url, filePath, range, limitMs) {
   });
 }
 
-// Samples the server's VmRSS every 50 ms while a phase runs.
-function memoryWatch(pid) {
-  const rss = () => {
-    try { return Number(fs.readFileSync(`/proc/${pid}/status`, 'utf8').match(/VmRSS:\s+(\d+)/)[1]) / 1024; } catch { return 0; }
-  };
-  let peak = rss();
-  const timer = setInterval(() => { peak = Math.max(peak, rss()); }, 50);
-  return { stop: () => { clearInterval(timer); return { peak, after: rss() }; }, now: rss };
-}
 
-// Probes GET /api/assets twice a second until `until` resolves.
-async function probeWhile(url, until) {
-  const waits = [];
-  let running = true;
-  until.finally(() => { running = false; });
-  while (running) {
-    const t = await timed(() => api(url, '/api/assets'));
-    waits.push(t);
-    if (running) await Promise.race([sleep(500), until.catch(() => {})]);
-  }
-  return waits;
-}
 
-const median = (xs) => { const s = [...xs].sort((a, b) => a - b); return s.length ? s[(s.length - 1) >> 1] : NaN; };
 // Statuses counted (0: no answer, -1: error); lines (what a phase saw) as they are.
 const tally = (statuses) => {
   const counts = {}, lines = [];
@@ -161,7 +113,7 @@ async function phase(name, review, load) {
   const watch = memoryWatch(review.child.pid);
   const t0 = performance.now();
   const loadDone = Promise.race([load(), sleep(PHASE_LIMIT_MS).then(() => [`phase time limit (${PHASE_LIMIT_MS / 1000} s)`])]);
-  const probes = await probeWhile(review.url, loadDone);
+  const probes = await probeWhile(() => api(review.url, '/api/assets'), loadDone);
   const statuses = await loadDone;
   const memory = watch.stop();
   const waits = probes.map((p) => p.ms);

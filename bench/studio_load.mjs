@@ -14,6 +14,7 @@ import net from 'node:net';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { api, presetFolder, startStudio, stopStudio } from '../tests/studio/harness.mjs';
+import { LOAD_ADDRESS, median, memoryWatch, probeWhile, sleep, slowClient, timed } from './load_probe.mjs';
 
 const args = process.argv.slice(2);
 const jsonAt = args.indexOf('--json');
@@ -24,9 +25,6 @@ if (!rockbake) {
   process.exit(2);
 }
 
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const PROBE_TIMEOUT_MS = 30000;
-const LOAD_ADDRESS = '127.0.0.2';
 
 // A request of the load (from LOAD_ADDRESS); resolves with its status.
 function loadRequest(url, apiPath, body) {
@@ -59,56 +57,10 @@ function loadPost(port, apiPath, body) {
 }
 const PHASE_LIMIT_MS = 60000;  // a phase's load is abandoned after this (it says so)
 
-// A request that gives up after `ms` (status 0): a starved server must not stall the bench.
-async function timed(send, ms = PROBE_TIMEOUT_MS) {
-  const t0 = performance.now();
-  const status = await Promise.race([send().then((r) => r.status).catch(() => -1), sleep(ms).then(() => 0)]);
-  return { status, ms: performance.now() - t0 };
-}
 
-// A raw connection that sends `bytes` now, or a byte every `everyMs`; `done`
-// resolves with the status the server answered (0: none) when it closes or after `holdMs`.
-function slowClient(port, bytes, { everyMs = 0, holdMs = 20000 } = {}) {
-  const socket = net.connect({ port, host: '127.0.0.1', localAddress: LOAD_ADDRESS });
-  let text = '', at = 0, timer = null;
-  socket.on('error', () => {});
-  socket.on('data', (c) => { text += c.toString('latin1'); });
-  socket.on('connect', () => {
-    if (!everyMs) { socket.write(bytes); return; }
-    timer = setInterval(() => { if (at < bytes.length && !socket.destroyed) socket.write(bytes[at++]); }, everyMs);
-  });
-  const done = new Promise((resolve) => {
-    const finish = () => { clearInterval(timer); socket.destroy(); resolve(Number((text.match(/^HTTP\/1\.1 (\d{3})/) || [])[1] || 0)); };
-    socket.on('close', finish);
-    setTimeout(finish, holdMs);
-  });
-  return done;
-}
 
-// Samples the studio's VmRSS every 50 ms while a phase runs.
-function memoryWatch(pid) {
-  const rss = () => {
-    try { return Number(fs.readFileSync(`/proc/${pid}/status`, 'utf8').match(/VmRSS:\s+(\d+)/)[1]) / 1024; } catch { return 0; }
-  };
-  let peak = rss();
-  const timer = setInterval(() => { peak = Math.max(peak, rss()); }, 50);
-  return { stop: () => { clearInterval(timer); return { peak, after: rss() }; }, now: rss };
-}
 
-// Probes GET /api/state twice a second until `until` resolves.
-async function probeWhile(url, until) {
-  const waits = [];
-  let running = true;
-  until.finally(() => { running = false; });
-  while (running) {
-    const t = await timed(() => api(url, '/api/state'));
-    waits.push(t);
-    if (running) await Promise.race([sleep(500), until.catch(() => {})]);
-  }
-  return waits;
-}
 
-const median = (xs) => { const s = [...xs].sort((a, b) => a - b); return s.length ? s[(s.length - 1) >> 1] : NaN; };
 const tally = (statuses) => {
   const counts = {};
   for (const s of statuses) counts[s] = (counts[s] || 0) + 1;
@@ -119,7 +71,7 @@ async function phase(name, studio, load) {
   const watch = memoryWatch(studio.child.pid);
   const t0 = performance.now();
   const loadDone = Promise.race([load(), sleep(PHASE_LIMIT_MS).then(() => ['phase time limit'])]);
-  const probes = await probeWhile(studio.url, loadDone);
+  const probes = await probeWhile(() => api(studio.url, '/api/state'), loadDone);
   const statuses = await loadDone;
   const memory = watch.stop();
   const waits = probes.map((p) => p.ms);
