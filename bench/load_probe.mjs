@@ -57,3 +57,27 @@ export async function probeWhile(ask, until) {
 }
 
 export const median = (xs) => { const s = [...xs].sort((a, b) => a - b); return s.length ? s[(s.length - 1) >> 1] : NaN; };
+
+// One phase of a load test: `load()` resolves with the statuses of its requests (or lines saying
+// what happened), abandoned after `limitMs` (its result then says `limitLine`); meanwhile `ask`
+// probes the server as its page does, and the server's memory (process `pid`) is watched. Prints
+// a line and returns the phase's figures, `tally` summing up what the load got.
+export async function runPhase(name, { pid, ask, load, limitMs, limitLine, tally }) {
+  const watch = memoryWatch(pid);
+  const t0 = performance.now();
+  const loadDone = Promise.race([load(), sleep(limitMs).then(() => [limitLine])]);
+  const probes = await probeWhile(ask, loadDone);
+  const statuses = await loadDone;
+  const memory = watch.stop();
+  const waits = probes.map((p) => p.ms);
+  const result = {
+    phase: name, seconds: (performance.now() - t0) / 1000, probes: probes.length,
+    probe_ok: probes.filter((p) => p.status === 200).length,
+    probe_median_ms: median(waits), probe_worst_ms: Math.max(...waits),
+    load: tally(statuses), rss_peak_mib: memory.peak, rss_after_mib: memory.after,
+  };
+  console.log(`${name}: ${result.seconds.toFixed(1)} s; probes ${result.probe_ok}/${result.probes} answered, ` +
+              `median ${result.probe_median_ms.toFixed(1)} ms, worst ${result.probe_worst_ms.toFixed(0)} ms; ` +
+              `load got ${result.load}; RSS peak ${memory.peak.toFixed(0)} MiB, after ${memory.after.toFixed(0)} MiB`);
+  return result;
+}

@@ -23,7 +23,7 @@ import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { api, bakeLibrary, startReview, stopReview, writeLibrary } from '../tests/review/library.mjs';
-import { LOAD_ADDRESS, median, memoryWatch, probeWhile, sleep, slowClient, timed } from './load_probe.mjs';
+import { LOAD_ADDRESS, memoryWatch, runPhase, sleep, slowClient, timed } from './load_probe.mjs';
 
 const args = process.argv.slice(2);
 const option = (name) => { const at = args.indexOf(name); return at >= 0 ? args.splice(at, 2)[1] : null; };
@@ -108,25 +108,10 @@ const tally = (statuses) => {
   return [...parts, ...lines].join(', ') || '—';
 };
 
-// A phase: `load` resolves with the statuses of its requests (or lines saying what happened).
-async function phase(name, review, load) {
-  const watch = memoryWatch(review.child.pid);
-  const t0 = performance.now();
-  const loadDone = Promise.race([load(), sleep(PHASE_LIMIT_MS).then(() => [`phase time limit (${PHASE_LIMIT_MS / 1000} s)`])]);
-  const probes = await probeWhile(() => api(review.url, '/api/assets'), loadDone);
-  const statuses = await loadDone;
-  const memory = watch.stop();
-  const waits = probes.map((p) => p.ms);
-  const result = {
-    phase: name, seconds: (performance.now() - t0) / 1000, probes: probes.length,
-    probe_ok: probes.filter((p) => p.status === 200).length,
-    probe_median_ms: median(waits), probe_worst_ms: Math.max(...waits),
-    load: tally(statuses), rss_peak_mib: memory.peak, rss_after_mib: memory.after,
-  };
-  console.log(`${name}: ${result.seconds.toFixed(1)} s; probes ${result.probe_ok}/${result.probes} answered, ` +
-              `median ${result.probe_median_ms.toFixed(1)} ms, worst ${result.probe_worst_ms.toFixed(0)} ms; ` +
-              `load got ${result.load}; RSS peak ${memory.peak.toFixed(0)} MiB, after ${memory.after.toFixed(0)} MiB`);
-  return result;
+// A phase against this server: its page's probe, its own limit and tally.
+function phase(name, review, load) {
+  return runPhase(name, { pid: review.child.pid, ask: () => api(review.url, '/api/assets'), load, limitMs: PHASE_LIMIT_MS,
+    limitLine: `phase time limit (${PHASE_LIMIT_MS / 1000} s)`, tally });
 }
 
 async function run(rockbake, out) {

@@ -14,7 +14,7 @@ import net from 'node:net';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { api, presetFolder, startStudio, stopStudio } from '../tests/studio/harness.mjs';
-import { LOAD_ADDRESS, median, memoryWatch, probeWhile, sleep, slowClient, timed } from './load_probe.mjs';
+import { LOAD_ADDRESS, runPhase, sleep, slowClient, timed } from './load_probe.mjs';
 
 const args = process.argv.slice(2);
 const jsonAt = args.indexOf('--json');
@@ -67,24 +67,10 @@ const tally = (statuses) => {
   return Object.entries(counts).map(([s, n]) => `${n}×${s === '0' ? 'no answer' : s === '-1' ? 'error' : s}`).join(' ');
 };
 
-async function phase(name, studio, load) {
-  const watch = memoryWatch(studio.child.pid);
-  const t0 = performance.now();
-  const loadDone = Promise.race([load(), sleep(PHASE_LIMIT_MS).then(() => ['phase time limit'])]);
-  const probes = await probeWhile(() => api(studio.url, '/api/state'), loadDone);
-  const statuses = await loadDone;
-  const memory = watch.stop();
-  const waits = probes.map((p) => p.ms);
-  const result = {
-    phase: name, seconds: (performance.now() - t0) / 1000, probes: probes.length,
-    probe_ok: probes.filter((p) => p.status === 200).length,
-    probe_median_ms: median(waits), probe_worst_ms: Math.max(...waits),
-    load: tally(statuses), rss_peak_mib: memory.peak, rss_after_mib: memory.after,
-  };
-  console.log(`${name}: ${result.seconds.toFixed(1)} s; probes ${result.probe_ok}/${result.probes} answered, ` +
-              `median ${result.probe_median_ms.toFixed(1)} ms, worst ${result.probe_worst_ms.toFixed(0)} ms; ` +
-              `load got ${result.load}; RSS peak ${memory.peak.toFixed(0)} MiB, after ${memory.after.toFixed(0)} MiB`);
-  return result;
+// A phase against this server: its page's probe, its own limit and tally.
+function phase(name, studio, load) {
+  return runPhase(name, { pid: studio.child.pid, ask: () => api(studio.url, '/api/state'), load, limitMs: PHASE_LIMIT_MS,
+    limitLine: 'phase time limit', tally });
 }
 
 const dir = presetFolder(sourceDir);
