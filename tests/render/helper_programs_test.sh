@@ -10,6 +10,15 @@ rockbake=$1
 dir=$(mktemp -d "${TMPDIR:-/tmp}/rockbake-helpers-XXXXXX")
 trap 'rm -rf "$dir"' EXIT
 fail() { echo "FAILED: $*" >&2; exit 1; }
+# Runs a command with its output in LOG and its exit status in $status, without stopping the script.
+status_of() {
+  local log=$1
+  shift
+  set +e
+  "$@" > "$log" 2>&1
+  status=$?
+  set -e
+}
 ok() { echo "ok: $*"; }
 
 cat > "$dir/small.yaml" <<'YAML'
@@ -27,10 +36,7 @@ mkdir "$dir/bin" "$dir/nopov"
 for tool in sh bash cat sleep head; do ln -s "$(command -v $tool)" "$dir/nopov/$tool"; done
 
 # POV-Ray missing: refused before the simulation, naming the package.
-set +e
-PATH="$dir/nopov" "$rockbake" bake "$dir/small.yaml" -o "$dir/out1" > "$dir/log1" 2>&1
-status=$?
-set -e
+status_of "$dir/log1" env PATH="$dir/nopov" "$rockbake" bake "$dir/small.yaml" -o "$dir/out1"
 grep -q "POV-Ray ('povray') was not found on PATH" "$dir/log1" || fail "no POV-Ray message: $(cat "$dir/log1")"
 grep -qi "meshes" "$dir/log1" && fail "the simulation and meshes ran before POV-Ray was found missing: $(cat "$dir/log1")"
 [ "$status" -ne 0 ] || fail "a bake without POV-Ray exited 0"
@@ -45,10 +51,7 @@ printf 'this is not a movie' > "$last"
 exit 0
 SH
 chmod +x "$dir/bin/ffmpeg"
-set +e
-PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out2" > "$dir/log2" 2>&1
-status=$?
-set -e
+status_of "$dir/log2" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out2"
 [ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote garbage exited 0"
 [ -z "$(find "$dir/out2" -name turntable.mp4 2>/dev/null)" ] || fail "garbage was published as turntable.mp4"
 grep -q "ftyp" "$dir/log2" || fail "the message does not say what was wrong: $(cat "$dir/log2")"
@@ -61,10 +64,7 @@ sleep 424 &
 wait
 SH
 start=$(date +%s)
-set +e
-PATH="$dir/bin:$PATH" timeout 180 "$rockbake" bake "$dir/small.yaml" -o "$dir/out3" > "$dir/log3" 2>&1
-status=$?
-set -e
+status_of "$dir/log3" env PATH="$dir/bin:$PATH" timeout 180 "$rockbake" bake "$dir/small.yaml" -o "$dir/out3"
 elapsed=$(( $(date +%s) - start ))
 [ "$status" -ne 124 ] || fail "the bake waited for a hanging FFmpeg for 180 s"
 [ "$status" -ne 0 ] || fail "a bake whose FFmpeg hung exited 0"
@@ -108,10 +108,7 @@ done
 shift $n
 exec /usr/bin/ffmpeg "$@"
 SH
-set +e
-PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out7" > "$dir/log7" 2>&1
-status=$?
-set -e
+status_of "$dir/log7" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out7"
 [ "$status" -ne 0 ] || fail "a bake whose FFmpeg dropped frames exited 0"
 grep -q "it holds 1 frames, not the 2 it was given" "$dir/log7" || fail "no frame count in the message: $(cat "$dir/log7")"
 [ -z "$(find "$dir/out7" -name turntable.mp4 2>/dev/null)" ] || fail "a short movie was published"
@@ -125,10 +122,7 @@ cat > /dev/null
 printf '\000\000\000\030ftypisom\000\000\002\000isomiso2 and then no movie at all' > "$last"
 exit 0
 SH
-set +e
-PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out9" > "$dir/log9" 2>&1
-status=$?
-set -e
+status_of "$dir/log9" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out9"
 [ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote an ftyp box and garbage exited 0"
 grep -q "ffprobe" "$dir/log9" || fail "the message does not say ffprobe refused it: $(cat "$dir/log9")"
 [ -z "$(find "$dir/out9" -name turntable.mp4 2>/dev/null)" ] || fail "garbage behind an ftyp box was published"
@@ -146,10 +140,7 @@ echo "Render failed"
 exit 1
 SH
 chmod +x "$dir/bin/povray"
-set +e
-PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out4" > "$dir/log4" 2>&1
-status=$?
-set -e
+status_of "$dir/log4" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out4"
 [ "$status" -ne 0 ] || fail "a bake whose POV-Ray failed exited 0"
 grep -q '\\x0a' "$dir/log4" && fail "POV-Ray's lines arrive escaped on one line: $(cat "$dir/log4")"
 grep -q "^  File 'scene.pov' line 3: Parse Error: No matching }" "$dir/log4" ||
@@ -169,10 +160,7 @@ cat > "$dir/bin/ffmpeg" <<'SH'
 echo "Conversion failed!" >&2
 exit 1
 SH
-set +e
-PATH="$dir/bin:$PATH" "$rockbake" render "$dir/out5/small" > "$dir/log6" 2>&1
-status=$?
-set -e
+status_of "$dir/log6" env PATH="$dir/bin:$PATH" "$rockbake" render "$dir/out5/small"
 [ "$status" -ne 0 ] || fail "a re-render whose FFmpeg failed exited 0"
 grep -q "Conversion failed" "$dir/log6" || fail "FFmpeg's words are not shown: $(cat "$dir/log6")"
 (cd "$dir/out5/small" && find . -type f | sort | xargs sha256sum) > "$dir/after5"
