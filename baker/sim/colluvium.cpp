@@ -219,7 +219,13 @@ bool ColluviumModel::step(VoxelCoord& p, const VoxelCoord& lifted) const {
   for (const auto& col : kColumns) {
     const int x = p.x + col[0], y = p.y + col[1];
     const int lowest = p.z - (col[0] != 0 && col[1] != 0 ? corner_drop_ : edge_drop_);
-    if (x < 0 || y < 0 || x >= g.nx || y >= g.ny || lowest < 0) continue;
+    if (lowest < 0) continue;
+    if (x < 0 || y < 0 || x >= g.nx || y >= g.ny) {
+      // Beyond the grid the ground goes on: a voxel that would slide off its edge leaves the grid
+      // (the apron runs on past it) instead of piling against it.
+      if (g.ground && best_rest > 0) best_rest = 0, best_x = x, best_y = y;
+      continue;
+    }
     const std::uint64_t* bits = column(std::size_t(x) + std::size_t(g.nx) * std::size_t(y));
     if (!airFrom(bits, lowest, p.z)) continue;
     const int rest = restingHeight(bits, lowest);
@@ -234,7 +240,7 @@ bool ColluviumModel::step(VoxelCoord& p, const VoxelCoord& lifted) const {
 }
 
 std::uint64_t ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells,
-                                         std::vector<Cell>& handed_on, std::vector<Cell>& moved) {
+                                         std::vector<Cell>& handed_on, std::vector<Cell>& moved, std::size_t& left) {
   const GridLayout& g = layout_;
   const std::size_t nx = std::size_t(g.nx), plane = nx * std::size_t(g.ny);
   // How many columns the column (x, y) lies outside the tile (Chebyshev).
@@ -257,8 +263,16 @@ std::uint64_t ColluviumModel::settleTile(VoxelRock& rock, int tx, int ty, std::v
     bool stopped = false;  // at the edge of what this tile may touch, perhaps not at rest
     ++work;
     while (!stopped && step(p, from)) {
-      stopped = outside(p.x, p.y) == kSettleReach;
       ++work;
+      if (!g.contains(p.x, p.y, 0)) break;
+      stopped = outside(p.x, p.y) == kSettleReach;
+    }
+    if (!g.contains(p.x, p.y, 0)) {  // slid off the grid's edge
+      setMaterial(rock, start, Material::Air);
+      moved.push_back(start);
+      ++left;
+      forEachDisturbed(rock, start, [&](Cell d) { (inside(d) ? cells : handed_on).push_back(d); });
+      continue;
     }
     const Cell at = Cell(g.index(p.x, p.y, p.z));
     if (at == start) continue;
@@ -283,8 +297,8 @@ int ColluviumModel::colourOf(int tile) const {
   return (tile % tiles_x_) % 2 + 2 * ((tile / tiles_x_) % 2);
 }
 
-void ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std::vector<Cell>& handed_on,
-                                 std::vector<Cell>& moved) {
+std::size_t ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std::vector<Cell>& handed_on,
+                                        std::vector<Cell>& moved) {
   // The phase's voxels by tile, then in cell order.
   std::vector<std::uint64_t> keyed(cells.size());
   for (std::size_t k = 0; k < cells.size(); ++k) keyed[k] = std::uint64_t(tileOf(cells[k])) << 32 | cells[k];
@@ -294,15 +308,16 @@ void ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std:
     int tile;
     std::vector<Cell> cells, handed_on, moved;
     std::uint64_t work = 0;
+    std::size_t left = 0;
   };
   std::vector<TileWork> tiles;
   for (std::size_t k = 0; k < keyed.size(); ++k) {
     const int tile = int(keyed[k] >> 32);
-    if (tiles.empty() || tiles.back().tile != tile) tiles.push_back({tile, {}, {}, {}, 0});
+    if (tiles.empty() || tiles.back().tile != tile) tiles.push_back({tile, {}, {}, {}, 0, 0});
     tiles.back().cells.push_back(Cell(keyed[k]));
   }
   const auto run = [&](TileWork& t) {
-    t.work = settleTile(rock, t.tile % tiles_x_, t.tile / tiles_x_, std::move(t.cells), t.handed_on, t.moved);
+    t.work = settleTile(rock, t.tile % tiles_x_, t.tile / tiles_x_, std::move(t.cells), t.handed_on, t.moved, t.left);
   };
   if (shuffle_seed_ == 0) {
     tbb::parallel_for(std::size_t(0), tiles.size(), [&](std::size_t k) { run(tiles[k]); });
@@ -314,12 +329,15 @@ void ColluviumModel::settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std:
     for (std::size_t k : order) run(tiles[k]);
   }
   std::vector<std::uint64_t> work;
+  std::size_t left = 0;
   for (const TileWork& t : tiles) {
     handed_on.insert(handed_on.end(), t.handed_on.begin(), t.handed_on.end());
     moved.insert(moved.end(), t.moved.begin(), t.moved.end());
     work.push_back(t.work);
+    left += t.left;
   }
   noteWork(work);
+  return left;
 }
 
 void ColluviumModel::noteWork(std::vector<std::uint64_t> tile_work) {
@@ -334,8 +352,8 @@ void ColluviumModel::noteWork(std::vector<std::uint64_t> tile_work) {
   settle_work_.two_workers += std::max(workers[0], workers[1]);
 }
 
-void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
-                            std::vector<Cell>& vacated) {
+std::size_t ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
+                                   std::vector<Cell>& vacated) {
   track(rock);
   // What waits for each colour's phase; phases go round until none has any.
   std::array<std::vector<Cell>, 4> waiting;
@@ -343,6 +361,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     if (rock.material[c] == Material::Colluvium) waiting[std::size_t(colourOf(tileOf(c)))].push_back(c);
   unstable.clear();
   std::vector<Cell> moved, handed_on;  // each move's start and end
+  std::size_t left = 0;
   for (int idle = 0, colour = 0; idle < 4; colour = (colour + 1) % 4) {
     std::vector<Cell>& cells = waiting[std::size_t(colour)];
     if (cells.empty()) {
@@ -351,7 +370,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     }
     idle = 0;
     handed_on.clear();
-    settlePhase(rock, cells, handed_on, moved);
+    left += settlePhase(rock, cells, handed_on, moved);
     cells.clear();
     for (Cell c : handed_on) waiting[std::size_t(colourOf(tileOf(c)))].push_back(c);
   }
@@ -367,6 +386,7 @@ void ColluviumModel::settle(VoxelRock& rock, std::vector<Cell>& unstable, std::v
     }
     run = run_end;
   }
+  return left;
 }
 
 void ColluviumModel::setAccumulators(std::vector<std::int64_t> accumulators) {

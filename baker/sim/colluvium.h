@@ -47,8 +47,11 @@ class ColluviumModel {
   // repeats and cells that are not colluvium allowed) must hold every
   // colluvium voxel that may not be at rest; it is consumed. Appends each
   // cell whose material it changed to `changed` once, and those of them left
-  // empty to `vacated`. Parallel (TBB) over the tiles of each phase.
-  void settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed, std::vector<Cell>& vacated);
+  // empty to `vacated`. Parallel (TBB) over the tiles of each phase. On a grid with ground, a
+  // voxel that would slide off the grid's side leaves it (the ground and the apron go on beyond):
+  // returns how many did.
+  std::size_t settle(VoxelRock& rock, std::vector<Cell>& unstable, std::vector<Cell>& changed,
+                     std::vector<Cell>& vacated);
   // Appends to `unstable` the colluvium voxels that may have lost their rest
   // when `emptied` (cells that were solid and are air now) emptied: the voxel
   // above each, the one below, and those of the 8 neighbour columns from its
@@ -110,14 +113,17 @@ class ColluviumModel {
   // One phase: settles `cells` (all in tiles of one colour; any order,
   // repeats allowed) tile by tile; appends to `handed_on` the voxels outside
   // those tiles that may not be at rest, and each move's start and end to `moved`.
-  void settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std::vector<Cell>& handed_on, std::vector<Cell>& moved);
+  // Returns how many voxels left the grid.
+  std::size_t settlePhase(VoxelRock& rock, std::vector<Cell>& cells, std::vector<Cell>& handed_on,
+                          std::vector<Cell>& moved);
   // Adds one phase's tiles' work to settle_work_.
   void noteWork(std::vector<std::uint64_t> tile_work);
   // Settles the voxels `cells` of tile (tx, ty); appends to `handed_on` the
   // voxels outside it that may not be at rest, and to `moved` each move.
   // Returns its work (voxels taken up plus steps made).
+  // Adds to `left` the voxels that slid off the grid.
   std::uint64_t settleTile(VoxelRock& rock, int tx, int ty, std::vector<Cell> cells, std::vector<Cell>& handed_on,
-                           std::vector<Cell>& moved);
+                           std::vector<Cell>& moved, std::size_t& left);
   void track(const VoxelRock& rock);  // builds solid_ on first use
   // The bits of column x + nx y, z upwards.
   std::uint64_t* column(std::size_t xy) { return solid_.data() + xy * column_words_; }

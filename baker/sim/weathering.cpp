@@ -411,12 +411,13 @@ CycleStats WeatheringSimulation::step() {
     // Colluvium that rested on, or leaned against, decimated rock may move.
     st.colluvium_model.disturbedBy(rock, decimated, unstable);
     stats.deposited = st.colluvium_model.deposit(rock, decimated, changed, unstable);
-    st.colluvium_model.settle(rock, unstable, changed, vacated);
+    // Colluvium that slides off the grid's side counts as carried away.
+    stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
     if (st.colluvium) {
       st.colluvium->update(changed, false);
-      stats.removed = st.colluvium_model.remove(rock, st.colluvium->cells(), st.cycle + 1, changed, vacated, unstable);
+      stats.removed += st.colluvium_model.remove(rock, st.colluvium->cells(), st.cycle + 1, changed, vacated, unstable);
     }
-    st.colluvium_model.settle(rock, unstable, changed, vacated);
+    stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
   }
 
   // Rockfall (docs/model.md §6): until nothing floats. What fell and what it
@@ -440,7 +441,7 @@ CycleStats WeatheringSimulation::step() {
         if (rock.material[c] == Material::Air) emptied.push_back(c);
       }
       st.colluvium_model.disturbedBy(rock, emptied, unstable);
-      st.colluvium_model.settle(rock, unstable, changed, vacated);
+      stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
       if (vacated.empty()) break;
     }
   }

@@ -105,6 +105,31 @@ TEST(Colluvium, PilesKeepTheirTalusAngle) {
   EXPECT_LT(footprint(steep), footprint(shallow));
 }
 
+// An apron that reaches the grid's side runs on past it (docs/model.md §7, "At the grid's side"):
+// what would slide off leaves the grid, so the pile slopes down to the side instead of standing
+// there as a wall, and every unit is either in the grid or counted as gone.
+TEST(Colluvium, AnApronThatReachesTheGridsSideRunsOnPastIt) {
+  VoxelRock rock = emptyRock(31, 31, 40);
+  ColluviumModel model(rock.layout, {1.0, 35.0, 0.0}, 1);
+  std::vector<Cell> changed, unstable, vacated;
+  std::size_t left = 0;
+  const int units = 6000;  // a 35° cone of this volume is about 20 voxels in radius: past the sides
+  for (int poured = 0; poured < units; poured += 20) {
+    model.deposit(rock, std::vector<Cell>(20, Cell(rock.layout.index(15, 15, 39))), changed, unstable);
+    left += model.settle(rock, unstable, changed, vacated);
+  }
+  EXPECT_GT(left, 0u);
+  EXPECT_EQ(rock.count(Material::Colluvium) + left, std::size_t(units));
+  // On the outermost ring of columns the pile stands no higher than a slope at the talus angle
+  // down to the ground a column beyond allows (the cone's own height there is about 8 voxels).
+  const std::vector<int> heights = pileHeights(rock);
+  const int allowed = 1 + int(std::ceil(std::tan(35.0 * std::numbers::pi / 180.0) * std::numbers::sqrt2));
+  for (int i = 0; i < 31; ++i)
+    for (const auto& [x, y] : {std::pair{i, 0}, {i, 30}, {0, i}, {30, i}})
+      ASSERT_LE(heights[std::size_t(x + 31 * y)], allowed) << "column " << x << ", " << y;
+  EXPECT_GT(*std::max_element(heights.begin(), heights.end()), 10);
+}
+
 TEST(Colluvium, IsConservedCycleByCycle) {
   const Preset p = neckPreset(2, RockfallMode::Crumble);
   WeatheringSimulation sim(buildInitialRock(resolveShape(p), p), p);
