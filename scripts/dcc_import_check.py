@@ -175,7 +175,7 @@ fresh_scene()
 for lod in asset["lods"]:
     # A textured LOD's vertices are split along its UV seams; merged, its surfaces are closed again.
     bpy.ops.import_scene.gltf(filepath=os.path.join(folder, lod["file"]), merge_vertices=bool(maps))
-names = sorted(o.name for o in bpy.data.objects)
+names = sorted(o.name for o in bpy.data.objects if not o.name.startswith("clast_"))
 expected = sorted(f"{s}_lod{l['level']}" for l in asset["lods"] for s in ("rock", "colluvium"))
 print(f"  names: {check(names == expected, f'glTF names {names}, expected {expected}')} ({' '.join(names)})")
 for lod in asset["lods"]:
@@ -196,6 +196,25 @@ for lod in asset["lods"]:
             check(len(o.data.uv_layers) >= 1, f"{o.name}: no UV map")
             check_material(o, lod["level"])
 lod0 = asset["lods"][0]["triangles"]
+
+clasts = asset.get("clasts")
+if clasts:
+    # Stones: glTF nodes sharing a mesh arrive as linked duplicates (objects sharing one mesh
+    # datablock), each with the stones' material and, with a texture set, their base colour map.
+    print("== glTF: rock.glb's stones")
+    fresh_scene()
+    bpy.ops.import_scene.gltf(filepath=os.path.join(folder, asset["lods"][0]["file"]))
+    stones = [o for o in bpy.data.objects if o.name.startswith("clast_")]
+    shared = {o.data.name for o in stones}
+    count = clasts["lods"][0]["stones"]
+    print(f"  stones {check(len(stones) == count, f'{len(stones)} stone objects, asset.json {count}')} ({len(stones)}); "
+          f"linked duplicates {check(len(shared) <= clasts['shapes'] and len(shared) < len(stones), f'{len(shared)} meshes for {len(stones)} stones')} "
+          f"({len(shared)} meshes)")
+    for o in stones:
+        check(len(o.material_slots) == 1 and o.material_slots[0].material is not None, f"{o.name}: no material")
+        if maps:
+            images = images_into(o.material_slots[0].material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+            check(any("Clasts_BaseColor" in i for i in images), f"{o.name}: no stone base colour map ({images})")
 
 if os.path.exists(os.path.join(folder, "rock.obj")):  # OBJ is exported on request only
     print("== OBJ: rock.obj (y up in the file; Blender's importer turns it z up)")

@@ -69,8 +69,9 @@ MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps) {
   return t;
 }
 
-void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod,
-                const MapTextures& maps) {
+// The primitive of `m` with its material (named after the mesh), in `model`.
+tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
+                                 const std::array<float, 2>& durability_range, const MapTextures& maps) {
   const std::size_t n = m.positions.size();
   if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
       m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
@@ -146,7 +147,12 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   if (maps.normal >= 0) material.normalTexture.index = maps.normal;
   model.materials.push_back(material);
   prim.material = int(model.materials.size() - 1);
+  return prim;
+}
 
+void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod,
+                const MapTextures& maps) {
+  const tinygltf::Primitive prim = addPrimitive(model, m, durability_range, maps);
   const std::string name = glbMeshName(m.name, lod);
   tinygltf::Mesh mesh;
   mesh.name = name;
@@ -159,13 +165,56 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
   model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
 }
 
+// The stones LOD `lod` keeps: one mesh per shape they use (sharing one material), one node each.
+void addClasts(tinygltf::Model& model, const ClastSet& set, const std::array<float, 2>& durability_range, int lod) {
+  const std::size_t count = set.lod_counts.empty() ? set.stones.size() : set.lod_counts.at(std::size_t(lod));
+  if (count == 0) return;
+  const auto uri = [](const std::string& file) { return file.empty() ? file : "textures/" + file; };
+  const MapTextures maps = addMapTextures(model, {uri(set.base_color), uri(set.normal), uri(set.orm), ""});
+  std::vector<int> mesh_of(set.shapes.size(), -1);
+  int material = -1;
+  for (std::size_t k = 0; k < count; ++k) {
+    const ClastInstance& stone = set.stones[k];
+    int& mesh = mesh_of.at(std::size_t(stone.shape));
+    if (mesh < 0) {
+      tinygltf::Primitive prim;
+      if (material < 0) {
+        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps);
+        material = prim.material;
+      } else {
+        // One material for every stone mesh: drop the copy addPrimitive made.
+        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps);
+        model.materials.pop_back();
+        prim.material = material;
+      }
+      tinygltf::Mesh m;
+      m.name = "clast_shape_" + std::to_string(stone.shape);
+      m.primitives.push_back(prim);
+      model.meshes.push_back(m);
+      mesh = int(model.meshes.size() - 1);
+    }
+    tinygltf::Node node;
+    node.name = "clast_" + std::to_string(k);
+    node.mesh = mesh;
+    const auto& t = stone.translation;
+    const auto& q = stone.rotation;
+    node.translation = {t[0], t[2], -t[1]};  // z-up → y-up, as the vertices
+    // The same change of frame on the rotation: (x, y, z) → (x, z, −y) turns the axis alike.
+    node.rotation = {q[0], q[2], -q[1], q[3]};
+    node.scale = {stone.scale, stone.scale, stone.scale};
+    model.nodes.push_back(node);
+    model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
+  }
+}
+
 }  // namespace
 
 std::string glbMeshName(const std::string& surface, int lod) {
   return surface + "_lod" + std::to_string(lod);
 }
 
-void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod, const MaterialMaps& maps) {
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod, const MaterialMaps& maps,
+              const ClastSet* clasts) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "rockbake " ROCKBAKE_VERSION;
@@ -176,6 +225,7 @@ void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int 
     const MapTextures textures = addMapTextures(model, maps);
     for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
       if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod, textures);
+    if (clasts) addClasts(model, *clasts, meshes.durability_range, lod);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }

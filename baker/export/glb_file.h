@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/clast_set.h"
 #include "core/surface_mesh.h"
 
 namespace rockbake {
@@ -44,10 +45,15 @@ struct MaterialMaps {
   bool empty() const { return base_color.empty() && normal.empty() && orm.empty() && height.empty(); }
 };
 
+// Stones (core/clast_set.h): LOD `lod` keeps clasts->lod_counts[lod] of them, each a node
+// "clast_<k>" (k its index among the stones, largest first) with a translation, rotation and
+// uniform scale, instancing one of the meshes "clast_shape_<s>" (only those used), which share the
+// material "clast" (the stones' own maps, "textures/<file>", when they have them).
 // Throws std::runtime_error on failure.
 // `lod` names the nodes and meshes: rock_lod0, colluvium_lod0, … (so LODs
 // imported into one scene keep their names). `maps`: the LOD's texture set
 // (the meshes must then have uvs and tangents).
-void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod = 0, const MaterialMaps& maps = {});
+void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod = 0, const MaterialMaps& maps = {},
+              const ClastSet* clasts = nullptr);
 
 }  // namespace rockbake

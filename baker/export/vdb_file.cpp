@@ -215,14 +215,15 @@ typename GridT::Ptr readLayoutGrid(openvdb::io::File& vdb, const std::string& na
 namespace {
 
 // The archive of writeRockVdb to `out`; `file` names it in messages.
-void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf, const fs::path& file) {
+void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf, const fs::path& file,
+                     double sink) {
   initializeOpenVdb();
   checkArrays(rock, file);
   const GridLayout& layout = rock.layout;
 
   try {
     // Index space stays voxel (x, y, z); world space has the asset's pivot at the origin.
-    const std::array<double, 3> pivot = footprintPivot(rock);
+    const std::array<double, 3> pivot = footprintPivot(rock, sink);
     // One transform shared by every grid: Transform::copy() rebuilds the map and
     // recomputes the voxel size from translated corners, which rounds it off h.
     const auto transform = voxelCenterTransform(layout);
@@ -289,12 +290,12 @@ void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf
 
 }  // namespace
 
-void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf* rock_sdf) {
-  writeFileAtomically(file, [&](std::ostream& out) { writeVdbArchive(rock, out, rock_sdf, file); });
+void writeRockVdb(const VoxelRock& rock, const fs::path& file, const SmoothedSdf* rock_sdf, double sink) {
+  writeFileAtomically(file, [&](std::ostream& out) { writeVdbArchive(rock, out, rock_sdf, file, sink); });
 }
 
 void writeRockVdb(const VoxelRock& rock, std::ostream& out, const SmoothedSdf* rock_sdf) {
-  writeVdbArchive(rock, out, rock_sdf, "rock.vdb");
+  writeVdbArchive(rock, out, rock_sdf, "rock.vdb", 0.0);
 }
 
 VoxelRock readRockVdb(const fs::path& file, const GridLayout& layout) {

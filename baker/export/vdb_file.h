@@ -26,7 +26,9 @@ struct SmoothedSdf;  // core/openvdb_support.h
 // archive's random UUID is replaced by one hashed from the rest of the file,
 // so the same rock gives the same file at any thread count.
 // Throws std::runtime_error on failure.
-void writeRockVdb(const VoxelRock& rock, const std::filesystem::path& file, const SmoothedSdf* rock_sdf = nullptr);
+// `sink`: how deep the asset is sunk (footprintPivot's, mesh.sink resolved).
+void writeRockVdb(const VoxelRock& rock, const std::filesystem::path& file, const SmoothedSdf* rock_sdf = nullptr,
+                  double sink = 0.0);
 
 // The same bytes to a stream that can seek back (a std::ostringstream, a file):
 // the archive's UUID is patched in after the grids are written. The studio

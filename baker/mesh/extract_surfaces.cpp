@@ -261,7 +261,7 @@ SurfaceMesh extractMaterial(const VoxelRock& rock, Material material, const Extr
 
 }  // namespace
 
-std::array<double, 3> footprintPivot(const VoxelRock& rock) {
+std::array<double, 3> footprintPivot(const VoxelRock& rock, double sink) {
   const GridLayout& g = rock.layout;
   int lo[3] = {g.nx, g.ny, g.nz}, hi[3] = {-1, -1, -1};
   for (int z = 0; z < g.nz; ++z)
@@ -275,7 +275,28 @@ std::array<double, 3> footprintPivot(const VoxelRock& rock) {
   if (hi[0] < 0) lo[0] = lo[1] = lo[2] = 0, hi[0] = g.nx, hi[1] = g.ny, hi[2] = g.nz;
   const double h = g.h;
   return {g.origin[0] + 0.5 * (lo[0] + hi[0]) * h, g.origin[1] + 0.5 * (lo[1] + hi[1]) * h,
-          g.ground ? 0.0 : g.origin[2] + lo[2] * h};
+          (g.ground ? 0.0 : g.origin[2] + lo[2] * h) + sink};
+}
+
+double suggestedBurialDepth(const VoxelRock& rock) {
+  const GridLayout& g = rock.layout;
+  if (!g.ground) return 0.0;
+  std::vector<std::size_t> section(std::size_t(g.nz), 0);
+  int top = -1;
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (rock.material[g.index(x, y, z)] == Material::Rock) ++section[std::size_t(z)], top = z;
+  if (top < 0) return 0.0;
+  const int third = std::max(1, (top + 1) / 3);
+  const std::size_t widest = *std::max_element(section.begin(), section.begin() + third);
+  int z = 0;
+  while (z < third && double(section[std::size_t(z)]) < 0.6 * double(widest)) ++z;
+  return std::max(1, z) * g.h;
+}
+
+double sinkDepth(const VoxelRock& rock, double sink) {
+  return sink < 0 ? suggestedBurialDepth(rock) : sink;
 }
 
 void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot) {

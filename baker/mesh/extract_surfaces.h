@@ -55,7 +55,18 @@ AssetMeshes extractSurfaces(const VoxelRock& rock, const ExtractParams& params,
 // voxels' (rock and colluvium) footprint, on the ground (z = 0; without ground,
 // the lowest voxel's floor). World units. Meshes, rock.vdb and the scene are
 // all written relative to it. The grid's centre when nothing is solid.
-std::array<double, 3> footprintPivot(const VoxelRock& rock);
+// `sink` (world units, >= 0) raises the pivot by that much: the asset stands that deep in the
+// ground plane (mesh.sink).
+std::array<double, 3> footprintPivot(const VoxelRock& rock, double sink = 0.0);
+
+// How deep a set dresser should sink the rock (world units): at least a voxel, so that uneven
+// terrain never shows a gap under it, and deeper where the rock stands on a foot narrower than
+// itself: up to the lowest layer whose rock section is 60 % of the widest section in the lower
+// third of the rock's height. 0 without ground or rock.
+double suggestedBurialDepth(const VoxelRock& rock);
+
+// mesh.sink resolved: `sink` itself, or suggestedBurialDepth for MeshParams::kSinkSuggested.
+double sinkDepth(const VoxelRock& rock, double sink);
 
 // Translates both surfaces and the bounds by -pivot.
 void movePivot(AssetMeshes& meshes, const std::array<double, 3>& pivot);

@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/colour.h"
 #include "core/triangle_geometry.h"
+#include "mesh/extract_surfaces.h"
 
 namespace rockbake {
 
@@ -50,6 +51,86 @@ nlohmann::ordered_json collisionJson(const AssetCollision& collision, double uni
 }
 
 }  // namespace
+
+namespace {
+
+double rounded(double v) {
+  return std::round(v * 1e6) / 1e6;
+}
+
+// Andrew's monotone chain: the convex hull of `points`, counter-clockwise, from the lowest (x, y).
+std::vector<std::array<double, 2>> convexHull(std::vector<std::array<double, 2>> points) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  const auto turn = [](const auto& o, const auto& a, const auto& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::vector<std::array<double, 2>> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+}  // namespace
+
+nlohmann::ordered_json groundJson(const VoxelRock& rock, const std::array<double, 3>& pivot, double sink,
+                                  double units_per_meter) {
+  const GridLayout& g = rock.layout;
+  if (!g.ground) return nullptr;
+  const int layer = std::clamp(int(std::floor(sink / g.h)), 0, g.nz - 1);
+  std::vector<std::array<double, 2>> all, own;
+  std::size_t cells = 0;
+  for (int y = 0; y < g.ny; ++y)
+    for (int x = 0; x < g.nx; ++x) {
+      const Material m = rock.material[g.index(x, y, layer)];
+      if (m == Material::Air) continue;
+      ++cells;
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {0, 1}, {1, 1}}) {
+        const std::array<double, 2> corner{g.origin[0] + (x + dx) * g.h - pivot[0],
+                                           g.origin[1] + (y + dy) * g.h - pivot[1]};
+        all.push_back(corner);
+        if (m == Material::Rock) own.push_back(corner);
+      }
+    }
+  const auto metres = [&](const std::vector<std::array<double, 2>>& points) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (const auto& p : convexHull(points))
+      list.push_back({rounded(p[0] / units_per_meter), rounded(p[1] / units_per_meter)});
+    return list;
+  };
+  return {{"pivot", "ground-contact"},
+          {"sink_m", rounded(sink / units_per_meter)},
+          {"suggested_burial_m", rounded(suggestedBurialDepth(rock) / units_per_meter)},
+          {"footprint_m", metres(all)},
+          {"rock_footprint_m", metres(own)},
+          {"contact_area_m2", rounded(double(cells) * g.h * g.h / (units_per_meter * units_per_meter))}};
+}
+
+nlohmann::ordered_json clastsJson(const ClastSet& set, double h, double units_per_meter) {
+  if (set.stones.empty()) return nullptr;
+  nlohmann::ordered_json lods = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < set.lod_counts.size(); ++k)
+    lods.push_back({{"level", k}, {"stones", set.lod_counts[k]}, {"triangles", clastTriangles(set, k)}});
+  nlohmann::ordered_json maps = nlohmann::ordered_json::array();
+  for (const auto& [type, file] : {std::pair{"base_color", set.base_color}, {"normal", set.normal}, {"orm", set.orm}})
+    if (!file.empty())
+      maps.push_back({{"type", type}, {"file", std::string("textures/") + file}, {"size", set.map_size}});
+  return {{"stones", set.stones.size()},
+          {"shapes", set.shapes.size()},
+          {"voxel_size_m", h / units_per_meter},
+          {"size_m", {set.stones.back().scale / units_per_meter, set.stones.front().scale / units_per_meter}},
+          {"lods", lods},
+          {"maps", maps}};
+}
 
 nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   if (asset.lods.empty() || !asset.lods.front().meshes) throw std::invalid_argument("asset.json needs LOD0");
@@ -108,6 +189,8 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   j["preview"] = asset.preview.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.preview);
   j["movie"] = asset.movie.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(asset.movie);
   if (asset.collision) j["collision"] = collisionJson(*asset.collision, asset.units_per_meter);
+  if (!asset.clasts.is_null()) j["clasts"] = asset.clasts;
+  if (!asset.ground.is_null()) j["ground"] = asset.ground;
   if (!asset.individual.is_null()) j["individual"] = asset.individual;
   j["input_hash"] = asset.input_hash;
   return j;

@@ -12,6 +12,12 @@
 //    "preview": "render.png" | null, "movie": "turntable.mp4" | null,
 //    "collision": {"file": "collision.glb", "naming": "unreal" | "godot", "hull_count", "vertex_count",
 //                  "hulls": [{"node", "vertices", "volume_m3"}, ..]},   // only when export lists collision
+//    "clasts": {"stones", "shapes", "voxel_size_m", "size_m": [smallest, largest],
+//               "lods": [{"level", "stones", "triangles"}, ..], "maps": [{"type", "file", "size"}, ..]},
+//                                                                // stones on the apron; only with some
+//    "ground": {"pivot": "ground-contact", "sink_m", "suggested_burial_m",
+//               "footprint_m": [[x, y], ..], "rock_footprint_m": [[x, y], ..], "contact_area_m2"},
+//                                                                // where it meets the ground; only with ground
 //    "individual": {..}                                          // what the seed drew from the family
 //                                                                // (pipeline/individual_json.h); only with one
 //    "input_hash"}
@@ -28,7 +34,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/clast_set.h"
 #include "core/surface_mesh.h"
+#include "core/voxel_rock.h"
 
 namespace rockbake {
 
@@ -77,7 +85,19 @@ struct AssetDescription {
   std::string input_hash;
   std::optional<AssetCollision> collision;  // none: export does not list collision
   nlohmann::ordered_json individual;        // null: the preset has no family
+  nlohmann::ordered_json clasts;            // null: no stones (clastsJson)
+  nlohmann::ordered_json ground;            // null: no ground (groundJson)
 };
+
+// asset.json's "ground": the rock (and apron) where they meet the ground plane, after sinking
+// `sink` (world units): the convex footprints of the solid voxels in the layer at the ground plane,
+// about `pivot` (footprintPivot), in metres, counter-clockwise from the lowest-x point; the
+// contact's area; the suggested burial depth. Null without ground.
+nlohmann::ordered_json groundJson(const VoxelRock& rock, const std::array<double, 3>& pivot, double sink,
+                                  double units_per_meter);
+
+// asset.json's "clasts" for `set` on a grid of voxel size `h` (world units); null without stones.
+nlohmann::ordered_json clastsJson(const ClastSet& set, double h, double units_per_meter);
 
 // Area-weighted mean of the vertex colours (linear RGB) over both surfaces.
 std::array<double, 3> averageColor(const AssetMeshes& meshes);

@@ -19,6 +19,7 @@
 #include "mesh/extract_surfaces.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/asset_json.h"
+#include "pipeline/bake_clasts.h"
 #include "pipeline/bake_collision.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
@@ -233,11 +234,64 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   return weathered;
 }
 
-// The meshes in memory: LOD0, the LOD chain and, for a texture set, the bake source (pipeline/bake_meshes.h).
-std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered) {
-  MeshStageResult meshes = bakeMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
-  bake.timings.mesh =
-      MeshTimings{meshes.extract_seconds, meshes.subdivide_seconds, meshes.attributes_seconds, meshes.simplify_seconds};
+// The stones on LOD0's apron (pipeline/bake_clasts.h), and how many each LOD keeps: their triangles
+// come out of the LOD's budget for the rock and colluvium. Gives the LOD chain's targets.
+std::vector<double> placeClastsOnApron(Bake& bake, const Weathered& weathered, const MeshStageResult& meshes,
+                                       ClastStage& clasts) {
+  const Preset& preset = bake.preset;
+  if (!preset.clasts) return preset.mesh.lods;
+  Stopwatch clock;
+  clasts = bakeClasts(weathered.rock, meshes, weathered.meshing);
+  std::vector<double> targets = preset.mesh.lods;
+  if (!clasts.set.stones.empty() && exportsFormat(preset, "glb")) {
+    const std::vector<std::size_t> budgets =
+        lodBudgets(preset, meshes.meshes.rock.triangles.size() + meshes.meshes.colluvium.triangles.size());
+    clasts.set.lod_counts = clastLodCounts(clasts.set, budgets);
+    for (std::size_t k = 0; k < budgets.size(); ++k)
+      targets[k] = double(
+          std::max<std::ptrdiff_t>(1, std::ptrdiff_t(budgets[k]) - std::ptrdiff_t(clastTriangles(clasts.set, k + 1))));
+  }
+  const double seconds = clock.lap();
+  spdlog::info("{}: {} of {} stones on the apron, {} stone meshes ({:.1f} s)", preset.name, clasts.set.stones.size(),
+               preset.clasts->count, clasts.set.shapes.size(), seconds);
+  return targets;
+}
+
+// The meshes in memory: LOD0, the stones, the LOD chain and, for a texture set, the bake source
+// (pipeline/bake_meshes.h).
+// mesh.sink must leave some of the rock above the ground.
+void checkSink(const Bake& bake, const VoxelRock& rock) {
+  const double sink = sinkDepth(rock, bake.preset.mesh.sink);
+  const GridLayout& g = rock.layout;
+  int top = -1;
+  for (int z = g.nz - 1; z >= 0 && top < 0; --z)
+    for (int y = 0; y < g.ny && top < 0; ++y)
+      for (int x = 0; x < g.nx; ++x)
+        if (rock.material[g.index(x, y, z)] == Material::Rock) {
+          top = z;
+          break;
+        }
+  const double height = g.origin[2] + (top + 1) * g.h - footprintPivot(rock)[2];
+  if (top >= 0 && sink >= height)
+    throw InputError(bake.preset.locate("mesh.sink"), "mesh.sink",
+                     fmt::format("sinking the asset {:.4g} deep buries the whole rock, {:.4g} tall", sink, height),
+                     "give a depth below the rock's height, or `suggested` for the depth asset.json suggests");
+}
+
+std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered, ClastStage& clasts) {
+  checkSink(bake, weathered.rock);
+  MeshStageResult meshes = buildMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
+  Stopwatch clock;
+  const std::vector<double> targets = placeClastsOnApron(bake, weathered, meshes, clasts);
+  const double clast_seconds = clock.lap();
+  addLods(meshes, weathered.meshing, targets);
+  MeshTimings timings;
+  timings.extract = meshes.extract_seconds;
+  timings.subdivide = meshes.subdivide_seconds;
+  timings.attributes = meshes.attributes_seconds;
+  timings.simplify = meshes.simplify_seconds;
+  if (bake.preset.clasts) timings.clasts = clast_seconds;
+  bake.timings.mesh = timings;
   return meshes;
 }
 
@@ -246,7 +300,8 @@ std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered) {
   if (!exportsFormat(bake.preset, "collision")) return std::nullopt;
   Stopwatch clock;
   AssetCollision collision =
-      bakeCollision(weathered.rock, bake.preset.collision, footprintPivot(weathered.rock), bake.dir());
+      bakeCollision(weathered.rock, bake.preset.collision,
+                    footprintPivot(weathered.rock, sinkDepth(weathered.rock, bake.preset.mesh.sink)), bake.dir());
   bake.timings.collision = clock.lap();
   return collision;
 }
@@ -254,6 +309,7 @@ std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered) {
 struct Shapes {
   std::optional<MeshStageResult> meshes;
   std::optional<AssetCollision> collision;
+  ClastStage clasts;  // none without clasts:, ground or colluvium
 };
 
 // The meshes and the collision hulls, none with --no-mesh. Both read the weathered rock alone, so they are made
@@ -264,7 +320,8 @@ Shapes meshAndCollide(Bake& bake, const Weathered& weathered) {
   Shapes shapes;
   if (!bake.options.mesh) return shapes;
   bake.progress(0.7, "mesh");
-  sideBySide([&] { shapes.meshes = mesh(bake, weathered); }, [&] { shapes.collision = collide(bake, weathered); });
+  sideBySide([&] { shapes.meshes = mesh(bake, weathered, shapes.clasts); },
+             [&] { shapes.collision = collide(bake, weathered); });
   bake.clock.lap();
   return shapes;
 }
@@ -274,7 +331,8 @@ constexpr double kLeastMapCoverage = 0.10;
 
 // The texture set in OUT/<name>/textures/ (docs/textures.md): every LOD unwrapped, its tangent frames, its maps
 // baked from the bake source, which is dropped here, used or not (it is the largest thing the meshes hold).
-std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::optional<MeshStageResult>& meshes) {
+std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::optional<MeshStageResult>& meshes,
+                                  ClastStage& clasts) {
   if (!meshes) return std::nullopt;
   const AssetMeshes source = std::move(meshes->bake_source);
   meshes->bake_source = AssetMeshes{};
@@ -308,6 +366,8 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   } catch (const ChartsDoNotFit& e) {
     throw InputError(preset.locate("texture.padding"), "texture.padding", e.what());
   }
+  textureClasts(clasts, preset, request.folder);  // the stones' own small atlas
+  clasts.sources.clear();
   bake.timings.texture = bake.clock.lap();
   if (!set.sizes.empty() && set.sizes[0] < lodMapSize(*preset.texture, 0))
     spdlog::info("{}: maps at {} × {}, not texture.size {}: the bake source's {} triangles fill no more", preset.name,
@@ -328,10 +388,10 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
 // The mesh files, then rock.vdb (its rock_sdf the field the meshes came from); with --no-mesh, rock.vdb
 // alone, with the occupancy.
 void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<MeshStageResult>& meshes,
-                 const std::optional<TextureSet>& textures) {
+                 const std::optional<TextureSet>& textures, const ClastSet& clasts) {
   bake.checkCancel();
   if (!meshes) {
-    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb");
+    writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", nullptr, sinkDepth(weathered.rock, bake.preset.mesh.sink));
     bake.timings.write_vdb = bake.clock.lap();
     return;
   }
@@ -339,18 +399,21 @@ void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<Mes
   // Two sets of files from separate data: written side by side.
   sideBySide(
       [&] {
-        bake.timings.mesh->exports = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir());
+        bake.timings.mesh->exports =
+            exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir(), &clasts);
       },
       [&] {
         if (!exportsFormat(bake.preset, "vdb")) return;
         Stopwatch clock;
-        writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get());
+        writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get(),
+                     sinkDepth(weathered.rock, bake.preset.mesh.sink));
         bake.timings.write_vdb = clock.lap();
       });
   bake.clock.lap();
 }
 
-void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures) {
+void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
+            const ClastSet& clasts) {
   if (!meshes || !bake.options.render) return;
   bake.checkCancel();
   bake.progress(0.85, "render");
@@ -366,6 +429,7 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
     const MaterialMaps maps = lodMaterialMaps(*textures, 0);
     request.maps = {maps.base_color};
   }
+  if (!clasts.stones.empty()) request.clasts = &clasts;
   const RenderOutputs rendered = renderAsset(textures ? textures->lods.at(0) : meshes->meshes, request);
   bake.timings.render = rendered.seconds_total;
   spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
@@ -379,7 +443,8 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
 // asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only; the LODs as shipped (split
 // along their UV seams when there is a texture set), the maps and the collision hulls.
 void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
-              const std::optional<AssetCollision>& collision) {
+              const std::optional<AssetCollision>& collision, const ClastSet& clasts, const VoxelRock& rock) {
+  const double h = rock.layout.h;
   if (!meshes) return;
   const Preset& preset = bake.preset;
   AssetDescription asset;
@@ -409,6 +474,8 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
   asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);
   asset.collision = collision;
   asset.individual = individualJson(preset);
+  asset.clasts = clastsJson(clasts, h, preset.units_per_meter);
+  asset.ground = groundJson(rock, meshes->pivot, sinkDepth(rock, preset.mesh.sink), preset.units_per_meter);
   writeAssetJson(asset, bake.dir());
 }
 
@@ -461,11 +528,11 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   // A helper program that is missing is said before the simulation, not after it.
   if (options.mesh && options.render) requireHelperPrograms(preset.render.turntable_frames > 0);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
-  auto [meshes, collision] = meshAndCollide(bake, weathered);
-  const std::optional<TextureSet> textures = texture(bake, weathered, meshes);
-  exportFiles(bake, weathered, meshes, textures);
-  render(bake, meshes, textures);
-  describe(bake, meshes, textures, collision);
+  auto [meshes, collision, clasts] = meshAndCollide(bake, weathered);
+  const std::optional<TextureSet> textures = texture(bake, weathered, meshes, clasts);
+  exportFiles(bake, weathered, meshes, textures, clasts.set);
+  render(bake, meshes, textures, clasts.set);
+  describe(bake, meshes, textures, collision, clasts.set, weathered.rock);
   writeStats(bake, weathered);
   writeManifestLast(bake, weathered);
   return commit(bake, weathered);

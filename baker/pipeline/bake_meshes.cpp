@@ -11,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "mesh/apron_toe.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/fold_over_repair.h"
@@ -63,6 +64,11 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
         matchVolume(meshes.colluvium, double(rock.count(Material::Colluvium)) * voxel, 0.5 * g.h, g.ground);
         repairFoldOvers(meshes.colluvium);
       });
+  // The apron thins out onto the ground along a toe, instead of ending in the voxels' rounded lip.
+  if (preset.mesh.apron_toe > 0) {
+    updateBounds(meshes);
+    shapeApronToe(meshes, g, {preset.mesh.apron_toe});
+  }
   r.subdivide_seconds = clock.lap();
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
@@ -72,7 +78,7 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   updateBounds(meshes);
   meshes.durability_range = {palette.durability_min, palette.durability_max};
   meshes = applyPalette(std::move(meshes), palette);
-  r.pivot = footprintPivot(rock);
+  r.pivot = footprintPivot(rock, sinkDepth(rock, preset.mesh.sink));
   movePivot(meshes, r.pivot);
   r.attributes_seconds += clock.lap();
 
@@ -90,17 +96,29 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   return r;
 }
 
-MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source) {
-  MeshStageResult r = buildMeshes(rock, preset, keep_bake_source);
+void addLods(MeshStageResult& r, const Preset& preset, const std::vector<double>& targets) {
   if (exportsFormat(preset, "glb")) {
     Stopwatch clock;
     SimplifyWarnings warnings;
-    r.lods = simplifyLods(r.meshes, {preset.mesh.lods}, &warnings);
+    r.lods = simplifyLods(r.meshes, {targets}, &warnings);
     for (const std::string& w : warnings) spdlog::warn("{}: {}", preset.name, w);
     r.simplify_seconds += clock.lap();
   }
+  r.lod_files.clear();
   r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");
   for (std::size_t i = 0; i < r.lods.size(); ++i) r.lod_files.push_back("rock_lod" + std::to_string(i + 1) + ".glb");
+}
+
+std::vector<std::size_t> lodBudgets(const Preset& preset, std::size_t lod0_triangles) {
+  std::vector<std::size_t> budgets;
+  for (const double t : preset.mesh.lods)
+    budgets.push_back(t < 1.0 ? std::size_t(std::llround(t * double(lod0_triangles))) : std::size_t(t));
+  return budgets;
+}
+
+MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source) {
+  MeshStageResult r = buildMeshes(rock, preset, keep_bake_source);
+  addLods(r, preset, preset.mesh.lods);
   return r;
 }
 

@@ -45,6 +45,13 @@ bool exportsFormat(const Preset& preset, const std::string& format);
 // bubble graph in effect when the simulation ended (its latest keyframe's).
 MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);
 
+// The LOD chain of `r.meshes` to `targets` (mesh.lods' form) when the preset exports glb, and
+// the name of the file that will hold each LOD (`lod_files`). No files.
+void addLods(MeshStageResult& r, const Preset& preset, const std::vector<double>& targets);
+
+// LOD k >= 1's triangle budget for `lod0_triangles` triangles in LOD0: mesh.lods' entry as a count.
+std::vector<std::size_t> lodBudgets(const Preset& preset, std::size_t lod0_triangles);
+
 // buildMeshes, then the LOD chain (`mesh.lods`) when the preset exports glb, and the name of
 // the file that will hold each LOD (`lod_files`). No files.
 MeshStageResult bakeMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);

@@ -15,6 +15,7 @@ nlohmann::ordered_json bakeTimingsJson(const BakeTimings& t) {
     stages["mesh_subdivide"] = t.mesh->subdivide;
     stages["mesh_attributes"] = t.mesh->attributes;
     stages["mesh_simplify"] = t.mesh->simplify;
+    if (t.mesh->clasts) stages["clasts"] = *t.mesh->clasts;
   }
   if (t.texture) stages["texture"] = *t.texture;
   if (t.mesh) stages["export"] = t.mesh->exports;

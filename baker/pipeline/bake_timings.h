@@ -15,8 +15,9 @@ struct MeshTimings {
   double extract = 0.0;
   double subdivide = 0.0;
   double attributes = 0.0;
-  double simplify = 0.0;  // LOD0 and the LODs
-  double exports = 0.0;   // the mesh files
+  double simplify = 0.0;         // LOD0 and the LODs
+  std::optional<double> clasts;  // the stone meshes and their places on the apron (with clasts:)
+  double exports = 0.0;          // the mesh files
 };
 
 struct BakeTimings {
@@ -36,7 +37,7 @@ struct BakeTimings {
 
 // {"load", "shape", "simulate", "simulate_curvature", "simulate_colluvium",
 //  "simulate_rockfall", "mesh_extract", "mesh_subdivide", "mesh_attributes",
-//  "mesh_simplify", "texture", "export", "write_vdb", "collision", "render", "total"},
+//  "mesh_simplify", "clasts", "texture", "export", "write_vdb", "collision", "render", "total"},
 // those that ran.
 nlohmann::ordered_json bakeTimingsJson(const BakeTimings& timings);
 

@@ -22,7 +22,7 @@ MaterialMaps lodMaterialMaps(const TextureSet& textures, int lod) {
 }
 
 double exportMeshes(const MeshStageResult& r, const TextureSet* textures, const Preset& preset,
-                    const std::filesystem::path& asset_dir) {
+                    const std::filesystem::path& asset_dir, const ClastSet* clasts) {
   const Stopwatch export_clock;
   const AssetMeshes& meshes = r.meshes;
   if (textures && textures->lods.size() != 1 + r.lods.size())
@@ -59,7 +59,8 @@ double exportMeshes(const MeshStageResult& r, const TextureSet* textures, const 
       exports.run(timed(i == 0 ? "glb" : "lod", [&, i] {
         const AssetMeshes& lod = textures ? textures->lods[i] : i == 0 ? meshes : r.lods[i - 1];
         writeGlb(lod, asset_dir / r.lod_files[i], int(i),
-                 textures ? lodMaterialMaps(*textures, int(i)) : MaterialMaps{});
+                 textures ? lodMaterialMaps(*textures, int(i)) : MaterialMaps{},
+                 clasts && !clasts->stones.empty() ? clasts : nullptr);
       }));
   exports.wait();  // rethrows the first failure
   return export_clock.elapsed();

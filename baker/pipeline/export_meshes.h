@@ -24,10 +24,10 @@ namespace rockbake {
 // The folder of an asset that holds its texture set: OUT/<name>/textures/.
 inline constexpr const char* kTextureFolder = "textures";
 
-// `textures`: the texture set baked from `meshes`' LODs (LOD0 first), or null. Returns the
-// seconds it took (wall clock).
+// `textures`: the texture set baked from `meshes`' LODs (LOD0 first), or null; `clasts`: the
+// stones every GLB carries (export/glb_file.h), or null. Returns the seconds it took (wall clock).
 double exportMeshes(const MeshStageResult& meshes, const TextureSet* textures, const Preset& preset,
-                    const std::filesystem::path& asset_dir);
+                    const std::filesystem::path& asset_dir, const ClastSet* clasts = nullptr);
 
 // LOD `lod`'s maps in `textures`, as URIs relative to the asset folder.
 MaterialMaps lodMaterialMaps(const TextureSet& textures, int lod);

@@ -190,6 +190,15 @@ struct MeshParams {
   // Seeded roughness displaced along the refined surface's normals (world units);
   // none when absent.
   std::optional<NoiseParams> detail;
+  // The debris apron's toe (docs/model.md §7, "The toe"): near its rim on the ground the colluvium
+  // surface stays under a wedge rising from the rim at this angle, so the apron thins to nothing
+  // instead of ending in a rounded lip. Degrees, 0..45; 0 keeps the voxels' rim.
+  double apron_toe = 12.0;
+  // How deep the asset is sunk into the ground (docs/meshes.md, "The pivot and the frames"): the
+  // pivot, and so the ground plane, is raised by it. World units >= 0, or kSinkSuggested: by the
+  // suggested burial depth (suggestedBurialDepth in mesh/extract_surfaces.h).
+  static constexpr double kSinkSuggested = -1.0;
+  double sink = 0.0;
 };
 enum class Palette { Natural, Debug, Curvature };
 using SrgbColor = std::array<double, 3>;  // each channel in [0, 1]
@@ -255,6 +264,19 @@ struct CollisionParams {
   bool colluvium = false;                   // also hull the colluvium, separately
 };
 
+// ---- clasts (docs/model.md §13) ----
+// Stones on the debris apron (clasts/clasts.h): each a small weathered rock, placed after the
+// simulation, exported as instances of a few shared meshes. Sizes are the stone's longest axis in
+// voxels of the grid the bake runs at.
+struct ClastParams {
+  static constexpr int kMaxCount = 5000;
+  static constexpr int kMinShapes = 6, kMaxShapes = 32;
+  int count = 200;                        // stones placed at most, 1..kMaxCount
+  std::array<double, 2> size{1.0, 10.0};  // smallest and largest stone, voxels, [0.5, 64], min <= max
+  double size_exponent = 1.0;             // a: N(> s) ∝ s^-a between the two sizes, (0, 4]
+  int shapes = 8;                         // distinct stone meshes, kMinShapes..kMaxShapes
+};
+
 // ---- families (docs/model.md §12) ----
 // A preset's family: what a seed may change of the blockout, and by how much.
 // Each seed draws one individual from these ranges (sim/family.h); the grid is
@@ -317,6 +339,8 @@ struct Preset : SimParams {
   // The texture set (UV atlases, tangent frames and baked maps on every LOD); none: the
   // meshes carry vertex colours only. The house style gives one.
   std::optional<TextureParams> texture;
+  // Stones on the apron (docs/model.md §13); none: no stones. The house style gives them.
+  std::optional<ClastParams> clasts;
 
   // Where each key the file gave was written, by key path ("shape.image.path"),
   // so that later stages place their errors too (an unreadable image, a shape

@@ -557,6 +557,21 @@ const MapSpec<StopParams>& untilSpec() {
   return spec;
 }
 
+// mesh.sink: a depth, or `suggested`.
+Value<double> sinkDepth() {
+  return {"number or `suggested`",
+          "≥ 0, or `suggested`",
+          nullptr,
+          false,
+          [](const Field& f, double& depth, const ReadContext&) {
+            if (f.yaml().IsScalar() && f.yaml().Scalar() == "suggested")
+              depth = MeshParams::kSinkSuggested;
+            else
+              depth = f.numberIn(0.0, kMaxWorldLength);
+          },
+          [](const double& depth) { return depth < 0 ? json("suggested") : json(depth); }};
+}
+
 const MapSpec<MeshParams>& meshSpec() {
   static const Keys<MeshParams> k;
   static const MapSpec<MeshParams> spec{
@@ -575,6 +590,13 @@ const MapSpec<MeshParams>& meshSpec() {
             "seeded roughness along the normals before simplification; its `amplitude` is the RMS displacement "
             "on neutral rock, in world units")
               .see("durability.noise.[]"),
+          k("apron_toe", &MeshParams::apron_toe, numberIn(0.0, 45.0),
+            "the slope the debris apron thins out at towards its rim on the ground; 0 keeps the voxels' rim")
+              .unit(kDegrees),
+          k("sink", &MeshParams::sink, sinkDepth(),
+            "how deep the asset is sunk into the ground: the pivot rises by it; `suggested` sinks it by "
+            "`asset.json`'s suggested burial depth")
+              .unit(kWorld),
       },
       {},
       "([meshes.md](meshes.md))"};
@@ -684,6 +706,25 @@ const MapSpec<TextureParams>& textureSpec() {
   return spec;
 }
 
+const MapSpec<ClastParams>& clastSpec() {
+  static const Keys<ClastParams> k;
+  static const MapSpec<ClastParams> spec{
+      {
+          k("count", &ClastParams::count, integer<int>(1, ClastParams::kMaxCount),
+            "stones placed on the apron at most (fewer where it has no room)"),
+          k("size", &ClastParams::size, interval(0.5, 64.0), "the smallest and largest stone's longest axis")
+              .unit("voxels"),
+          k("size_exponent", &ClastParams::size_exponent, numberIn(0.0, 4.0, true),
+            "`a` in N(> s) ∝ s^-a: how quickly large stones grow rare"),
+          k("shapes", &ClastParams::shapes, integer<int>(ClastParams::kMinShapes, ClastParams::kMaxShapes),
+            "distinct stone meshes the stones share"),
+      },
+      {},
+      "Stones on the debris apron, each a small weathered rock, larger ones further from the foot "
+      "([model.md §13](model.md)); exported as instances of shared meshes. Left out, none."};
+  return spec;
+}
+
 // ---- the preset ----
 
 constexpr auto stopTime = [](auto& p) -> auto& {
@@ -738,6 +779,7 @@ const MapSpec<Preset>& presetSpec() {
             "world units per metre: `asset.json`'s physical size"),
           k("render", &Preset::render, mapValue<renderSpec>(), "the POV-Ray render"),
           k("texture", &Preset::texture, mapValue<textureSpec>(), "the texture set: UV atlases and baked maps"),
+          k("clasts", &Preset::clasts, mapValue<clastSpec>(), "stones on the debris apron"),
       },
       {exactlyOne({"time", "cycles"}, "missing 'time' (or 'cycles')", "give either 'time' or 'cycles', not both",
                   "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution")},

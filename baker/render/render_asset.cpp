@@ -138,7 +138,7 @@ RenderOutputs renderScenes(const AssetMeshes* mesh_data, const RenderRequest& r)
   std::filesystem::create_directories(r.asset_dir);
   AssetFrame meshes;
   if (mesh_data) {
-    writeMeshInclude(*mesh_data, out.mesh_include, r.maps);
+    writeMeshInclude(*mesh_data, out.mesh_include, r.maps, r.clasts);
     meshes = assetFrame(*mesh_data);
   } else {
     meshes = readAssetFrame(out.mesh_include);

@@ -34,6 +34,7 @@ struct RenderRequest {
   // The texture set's LOD0 maps (render/scene.h): the meshes are then the textured LOD0 (with
   // uvs) and the templates that ask for them render them; empty: vertex colours only.
   RenderMaps maps;
+  const ClastSet* clasts = nullptr;  // the stones on the apron (render/scene.h), or none
 };
 
 struct RenderOutputs {

@@ -61,7 +61,9 @@ double radius(const AssetMeshes& m) {
   return std::max(std::sqrt(r2), 1e-6);
 }
 
-void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& name, bool mapped) {
+// `look`: the prefix of the grain and normal the texture_list reads (<look>_Grain, <look>_Normal).
+void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& name, bool mapped,
+                const std::string& look) {
   const std::size_t n = mesh.positions.size();
   out << "#declare " << name << " = mesh2 {\n  vertex_vectors { " << n;
   char buf[128];
@@ -117,8 +119,8 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
     // Rockbake_Dark and Rockbake_Light times itself, with its bump and finish.
     char rgb[96];
     std::snprintf(rgb, sizeof rgb, "rgb <%.6g, %.6g, %.6g>", c[0] / 4095.0, c[1] / 4095.0, c[2] / 4095.0);
-    out << ",\n    texture { pigment { pigment_pattern { " << name << "_Grain } color_map { [0 " << rgb
-        << " * Rockbake_Dark] [1 " << rgb << " * Rockbake_Light] } } normal { " << name
+    out << ",\n    texture { pigment { pigment_pattern { " << look << "_Grain } color_map { [0 " << rgb
+        << " * Rockbake_Dark] [1 " << rgb << " * Rockbake_Light] } } normal { " << look
         << "_Normal } finish { Rockbake_Finish } }";
   }
   out << "\n  }\n  face_indices { " << mesh.triangles.size();
@@ -128,6 +130,38 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
     out << buf;
   }
   out << (mapped ? "\n  }\n#end\n}\n" : "\n  }\n}\n");
+}
+
+// The stones (core/clast_set.h): a mesh2 per shape used, in the rock's grain and bump, and the
+// apron redeclared as the union of its surface and the stones, so that every template that shows
+// Rockbake_Colluvium shows them. POV-Ray's frame swaps y and z (a reflection P), so a stone's
+// matrix is s · P R P, written column by column (POV-Ray's rows) with P t.
+void writeClasts(std::ostream& out, const ClastSet& set) {
+  std::vector<bool> used(set.shapes.size(), false);
+  for (const ClastInstance& stone : set.stones) used.at(std::size_t(stone.shape)) = true;
+  for (std::size_t k = 0; k < set.shapes.size(); ++k)
+    if (used[k]) writeMesh2(out, set.shapes[k], "Rockbake_Clast_" + std::to_string(k), false, "Rockbake_Rock");
+  out << "#declare Rockbake_Colluvium = union {\n  object { Rockbake_Colluvium_Apron }\n";
+  char buf[512];
+  for (const ClastInstance& stone : set.stones) {
+    const auto& q = stone.rotation;
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    const int p[3] = {0, 2, 1};  // P: POV-Ray axis i is world axis p[i]
+    double a[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a[i][j] = stone.scale * r[p[i]][p[j]];
+    const auto& t = stone.translation;
+    std::snprintf(buf, sizeof buf,
+                  "  object { Rockbake_Clast_%d matrix <%.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, "
+                  "%.7g, %.7g> }\n",
+                  stone.shape, a[0][0], a[1][0], a[2][0], a[0][1], a[1][1], a[2][1], a[0][2], a[1][2], a[2][2], t[0],
+                  t[2], t[1]);
+    out << buf;
+  }
+  out << "}\n";
 }
 
 // The texture a template gets with Rockbake_Use_Maps: the base colour through the uvs (no bump: RenderMaps).
@@ -213,7 +247,8 @@ CameraSetup frameCamera(const AssetFrame& meshes, int width, int height, double 
   return cam;
 }
 
-void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps) {
+void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps,
+                      const ClastSet* clasts) {
   if (meshes.rock.positions.empty() || meshes.rock.triangles.empty())
     throw std::runtime_error("cannot write " + file.string() + ": the rock mesh has no triangles");
   const bool mapped = !maps.empty();
@@ -237,8 +272,12 @@ void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& fi
     out << "#ifndef (Rockbake_Dark)\n#declare Rockbake_Dark = 1;\n#end\n"
         << "#ifndef (Rockbake_Light)\n#declare Rockbake_Light = 1;\n#end\n";
     if (mapped) writeMappedTexture(out, maps);
-    writeMesh2(out, meshes.rock, "Rockbake_Rock", mapped);
-    if (colluvium) writeMesh2(out, meshes.colluvium, "Rockbake_Colluvium", mapped);
+    writeMesh2(out, meshes.rock, "Rockbake_Rock", mapped, "Rockbake_Rock");
+    const bool stones = colluvium && clasts && !clasts->stones.empty();
+    if (colluvium)
+      writeMesh2(out, meshes.colluvium, stones ? "Rockbake_Colluvium_Apron" : "Rockbake_Colluvium", mapped,
+                 "Rockbake_Colluvium");
+    if (stones) writeClasts(out, *clasts);
     out << "#declare Rockbake_Has_Colluvium = " << (colluvium ? 1 : 0) << ";\n";
   });
 }

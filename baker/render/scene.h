@@ -18,6 +18,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/clast_set.h"
 #include "core/surface_mesh.h"
 
 namespace rockbake {
@@ -85,7 +86,12 @@ struct RenderMaps {
 // Rockbake_Mapped: the base colour through the uvs (`uv_mapping` image_map,
 // `gamma srgb`), finish Rockbake_Finish. Without maps the
 // include is as above, whatever the template sets.
-void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps = {});
+//
+// With `clasts` (stones on the apron) the colluvium's surface is declared as
+// Rockbake_Colluvium_Apron and Rockbake_Colluvium is the union of it and the stones, each a
+// mesh2 Rockbake_Clast_<shape> in vertex colours with the rock's grain and bump.
+void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps = {},
+                      const ClastSet* clasts = nullptr);
 
 struct SceneFrame {
   int frame = 0;   // 0-based

@@ -27,6 +27,7 @@ time: 0.5
 mesh: {subdivision: 1, lods: [0.5, 0.25], detail: {amplitude: 0.01, period: 0.1, octaves: 2}}
 export: [ply, obj, glb]
 texture: {size: 256, ao_rays: 4}
+clasts: {count: 40, size: [1, 4]}
 YAML
 "$rockbake" bake "$work/asset.yaml" -o "$work/out" --no-render
 # Blender exits 0 even when the script fails: the script's own exit status is what counts.

@@ -32,9 +32,10 @@ YAML
 "$rockbake" bake "$work/asset.yaml" -o "$work/out" --no-render
 # The house chain: LODs as triangle counts.
 "$rockbake" bake "$work/asset.yaml" -o "$work/counts" --no-render --set name=glb-counts --set 'mesh.lods=[900, 300]'
-# With a texture set (docs/textures.md): TEXCOORD_0, TANGENT and the maps by relative URI.
+# With a texture set (docs/textures.md): TEXCOORD_0, TANGENT and the maps by relative URI; and
+# stones on the apron, nodes instancing shared meshes with their own maps (docs/model.md §13).
 "$rockbake" bake "$work/asset.yaml" -o "$work/textured" --no-render --set name=glb-textured \
-  --set 'texture={size: 256, ao_rays: 4}'
+  --set 'texture={size: 256, ao_rays: 4}' --set 'clasts={count: 40, size: [1, 4]}'
 files=("$work"/out/glb-check/*.glb "$work"/counts/glb-counts/*.glb "$work"/textured/glb-textured/*.glb)
 [ "${#files[@]}" -eq 9 ] || { echo "FAIL: expected rock.glb and two LODs thrice, found ${files[*]}" >&2; exit 1; }
 report=$(node "$validator" "${files[@]}") || { echo "$report"; exit 1; }
@@ -45,6 +46,7 @@ for glb in "$work"/textured/glb-textured/*.glb; do
   grep -qa '"TANGENT"' "$glb" || { echo "FAIL: $glb has no TANGENT" >&2; exit 1; }
   grep -qa 'textures/glb-textured_BaseColor' "$glb" || { echo "FAIL: $glb names no base colour map" >&2; exit 1; }
 done
+grep -qa '"clast_0"' "$work/textured/glb-textured/rock.glb" || { echo "FAIL: rock.glb has no stones" >&2; exit 1; }
 mv "$work/textured/glb-textured/textures" "$work/textured/glb-textured/maps-moved"
 if node "$validator" "$work/textured/glb-textured/rock.glb" >/dev/null; then
   echo "FAIL: the validator passed a GLB whose maps are missing" >&2
