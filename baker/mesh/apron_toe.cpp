@@ -37,8 +37,8 @@ void shapeApronToe(AssetMeshes& meshes, const GridLayout& g, const ApronToeParam
                                  std::min(double(meshes.bounds_min[1]), g.origin[1])};
   const std::array<double, 2> hi{std::max(double(meshes.bounds_max[0]), g.origin[0] + g.nx * h),
                                  std::max(double(meshes.bounds_max[1]), g.origin[1] + g.ny * h)};
-  const PlaneDistance rim(groundContactPoints(meshes, 0.0, eps, 0.75 * h), lo, hi, 0.5 * h);
-  const PlaneDistance rock(groundCapRim(meshes.rock, 0.0, eps), lo, hi, 0.5 * h);
+  const PlaneDistance rim(groundContactPoints(meshes, 0.0, eps, 0.75 * h, 0.5 * h), lo, hi, 0.5 * h);
+  const PlaneDistance rock(groundCapRim(meshes.rock, 0.0, eps, 0.5 * h), lo, hi, 0.5 * h);
   if (rim.empty() || rock.empty()) return;
   const double spread = band * (cot(params.angle) - cot(kRimSlope));  // at the rim
   const double reach = band * cot(kRimSlope) + h;                     // how far in from the rim the band's vertices lie

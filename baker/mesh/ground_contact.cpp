@@ -42,24 +42,35 @@ void distance1d(const std::vector<double>& f, std::vector<double>& d, std::vecto
 
 }  // namespace
 
-std::vector<std::array<double, 2>> groundCapRim(const SurfaceMesh& mesh, double ground, double eps) {
+std::vector<std::array<double, 2>> groundCapRim(const SurfaceMesh& mesh, double ground, double eps, double spacing) {
   std::vector<std::uint8_t> on_rim(mesh.positions.size(), 0);
+  std::vector<std::array<double, 2>> rim;
   const auto low = [&](std::uint32_t v) { return double(mesh.positions[v][2]) <= ground + eps; };
   for (const auto& t : mesh.triangles) {
     if (low(t[0]) && low(t[1]) && low(t[2])) continue;  // on the cap
-    for (const std::uint32_t v : t)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = t[std::size_t(k)], w = t[std::size_t((k + 1) % 3)];
       if (low(v)) on_rim[v] = 1;
+      if (!low(v) || !low(w)) continue;  // a rim edge: its other triangle is the cap's
+      const auto& a = mesh.positions[v];
+      const auto& b = mesh.positions[w];
+      const double l = std::hypot(double(b[0]) - a[0], double(b[1]) - a[1]);
+      const int steps = spacing > 0 ? int(std::ceil(l / spacing)) : 1;
+      for (int i = 1; i < steps; ++i) {
+        const double f = double(i) / steps;
+        rim.push_back({a[0] + f * (double(b[0]) - a[0]), a[1] + f * (double(b[1]) - a[1])});
+      }
+    }
   }
-  std::vector<std::array<double, 2>> rim;
   for (std::size_t v = 0; v < on_rim.size(); ++v)
     if (on_rim[v]) rim.push_back({double(mesh.positions[v][0]), double(mesh.positions[v][1])});
   return rim;
 }
 
 std::vector<std::array<double, 2>> groundContactPoints(const AssetMeshes& meshes, double ground, double eps,
-                                                       double shared) {
-  const std::vector<std::array<double, 2>> rock = groundCapRim(meshes.rock, ground, eps);
-  const std::vector<std::array<double, 2>> colluvium = groundCapRim(meshes.colluvium, ground, eps);
+                                                       double shared, double spacing) {
+  const std::vector<std::array<double, 2>> rock = groundCapRim(meshes.rock, ground, eps, spacing);
+  const std::vector<std::array<double, 2>> colluvium = groundCapRim(meshes.colluvium, ground, eps, spacing);
   // A rim point with one of the other surface's within `shared` is buried: found through buckets
   // of `shared` across.
   const double s2 = shared * shared;

@@ -19,14 +19,16 @@
 
 namespace rockbake {
 
-// The vertices on the rim of `mesh`'s ground cap: at z <= ground + eps, on a triangle that is not
-// all on the cap. (x, y) each.
-std::vector<std::array<double, 2>> groundCapRim(const SurfaceMesh& mesh, double ground, double eps);
+// Points along the rim of `mesh`'s ground cap, (x, y) each: its vertices (at z <= ground + eps,
+// on a triangle not all on the cap) and, on its edges between two of them, points at most
+// `spacing` apart.
+std::vector<std::array<double, 2>> groundCapRim(const SurfaceMesh& mesh, double ground, double eps,
+                                                double spacing);
 
 // The contact points of `meshes` on the ground plane z = `ground`: both surfaces' cap rims,
 // less the stretches where rock and colluvium rims run within `shared` of each other.
 std::vector<std::array<double, 2>> groundContactPoints(const AssetMeshes& meshes, double ground, double eps,
-                                                       double shared);
+                                                       double shared, double spacing);
 
 // Distances in the plane from a set of points, on a grid of `cell` over [lo, hi] (a cell's margin
 // added): exact from the cells the points fall in, read bilinearly.

@@ -345,6 +345,8 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.seed = preset.seed;
   request.voxel_size = weathered.rock.layout.h;
   request.varied = preset.bake.palette == Palette::Natural;  // the debug and curvature palettes are data
+  // The ground plane in the meshes' frame (about the pivot, which mesh.sink raised).
+  if (weathered.rock.layout.ground) request.ground = -sinkDepth(weathered.rock, preset.mesh.sink);
   request.name = preset.name;
   request.folder = bake.dir() / kTextureFolder;
   // The set takes seconds per LOD at the house sizes: the log follows it LOD by LOD.
@@ -366,7 +368,12 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   } catch (const ChartsDoNotFit& e) {
     throw InputError(preset.locate("texture.padding"), "texture.padding", e.what());
   }
+  for (const TextureSet::Step& step : set.steps)
+    spdlog::debug("{}: texture set: {} {:.3f} s ({:.3f} CPU-s)", preset.name, step.name, step.seconds,
+                  step.cpu_seconds);
+  Stopwatch clast_clock;
   textureClasts(clasts, preset, request.folder);  // the stones' own small atlas
+  if (!clasts.set.stones.empty()) spdlog::debug("{}: the stones' maps in {:.3f} s", preset.name, clast_clock.elapsed());
   clasts.sources.clear();
   bake.timings.texture = bake.clock.lap();
   if (!set.sizes.empty() && set.sizes[0] < lodMapSize(*preset.texture, 0))

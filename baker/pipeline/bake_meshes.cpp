@@ -16,6 +16,7 @@
 #include "mesh/extract_surfaces.h"
 #include "mesh/fold_over_repair.h"
 #include "mesh/refinement_levels.h"
+#include "mesh/relax_fold_overs.h"
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"
@@ -68,6 +69,10 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   if (preset.mesh.apron_toe > 0) {
     updateBounds(meshes);
     shapeApronToe(meshes, g, {preset.mesh.apron_toe});
+    // Where the spread pushed a vertex past its neighbours (at the rim's inward corners), flip the
+    // edges back, then relax what flipping cannot mend (mesh/relax_fold_overs.h).
+    repairFoldOvers(meshes.colluvium);
+    relaxFoldOvers(meshes.colluvium);
   }
   r.subdivide_seconds = clock.lap();
 

@@ -1,6 +1,7 @@
 #include "preset/preset_overrides.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <limits>
 #include <sstream>
@@ -108,6 +109,34 @@ void followResolution(YAML::Node& root, const PresetOverrides& overrides, int ow
       "texture.size", "--resolution " + std::to_string(*overrides.resolution) + " (maps follow the resolution)");
 }
 
+// Stones keep their size under --resolution (docs/model.md §13): clasts.size is in voxels, so a
+// preview at a coarser grid than the preset's would make every stone larger; it is scaled to keep
+// the preset's world size (within the key's range), unless the command line gave it.
+void stonesFollowResolution(YAML::Node& root, const PresetOverrides& overrides, int own, Source& source) {
+  if (!root["clasts"].IsDefined() || !root["clasts"].IsMap() || own <= 0 || *overrides.resolution == own) return;
+  const bool set_by_hand = std::any_of(overrides.sets.begin(), overrides.sets.end(), [](const std::string& s) {
+    return s.rfind("clasts.size=", 0) == 0 || s.rfind("clasts=", 0) == 0;
+  });
+  if (set_by_hand) return;
+  std::array<double, 2> size = ClastParams{}.size;
+  const YAML::Node given = root["clasts"]["size"];
+  if (given.IsDefined() && !given.IsNull()) {
+    if (!given.IsSequence() || given.size() != 2) return;  // malformed: the reader names it
+    try {
+      size = {given[0].as<double>(), given[1].as<double>()};
+    } catch (const YAML::Exception&) {
+      return;
+    }
+  }
+  const double factor = double(*overrides.resolution) / own;
+  YAML::Node scaled(YAML::NodeType::Sequence);
+  scaled.SetStyle(YAML::EmitterStyle::Flow);
+  for (const double s : size) scaled.push_back(std::clamp(s * factor, 0.5, 64.0));
+  root["clasts"]["size"] = scaled;
+  source.overrides.emplace_back("clasts.size",
+                                "--resolution " + std::to_string(*overrides.resolution) + " (stones keep their size)");
+}
+
 }  // namespace
 
 int mapSizeAtResolution(int size, int own_resolution, int resolution) {
@@ -126,7 +155,9 @@ void applyOverrides(YAML::Node& root, const PresetOverrides& overrides, Source& 
     source.overrides.emplace_back("seed", "--seed " + std::to_string(*overrides.seed));
   }
   if (overrides.resolution) {
-    followResolution(root, overrides, scalarOr(root, "grid", "resolution", GridParams{}.resolution), source);
+    const int own = scalarOr(root, "grid", "resolution", GridParams{}.resolution);
+    followResolution(root, overrides, own, source);
+    stonesFollowResolution(root, overrides, own, source);
     if (!root["grid"].IsDefined() || root["grid"].IsNull()) root["grid"] = YAML::Node(YAML::NodeType::Map);
     if (root["grid"].IsMap()) root["grid"]["resolution"] = *overrides.resolution;
     source.overrides.emplace_back("grid.resolution", "--resolution " + std::to_string(*overrides.resolution));

@@ -15,14 +15,19 @@
 //   height      1 channel float: the signed distance from the LOD to the source along the
 //               LOD's normal, world units (positive outwards); LOD0's is the film displacement
 //   mask        RGBA 8-bit linear: durability normalised over the asset's range (0 on
-//               colluvium), colluvium coverage, curvature (exposure, ½ flat), altitude: COLOR_1
+//               colluvium), colluvium coverage, curvature (exposure, ½ flat): COLOR_1's; and the
+//               ground contact (GroundMask; COLOR_1's alpha is the altitude)
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/surface_mesh.h"
+#include "core/vec3.h"
+#include "mesh/ground_contact.h"
 #include "texture/rasterize_uv.h"
 #include "texture/rock_look.h"
 #include "texture/trace_texels.h"
@@ -59,6 +64,20 @@ TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& lo
 TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::vector<float>, 2>& occlusion,
                                    const RockLook& look);
 TextureImage<float> bakeHeight(const LodBake& bake);
-TextureImage<std::uint8_t> bakeMask(const LodBake& bake, const RockLook& look);
+// The mask's alpha: how close a point is to where the asset meets the ground (mesh/ground_contact.h),
+// 1 on the contact, 0 from kGroundFeather voxels away (smoothstep in the 3-D distance), for engines
+// blending terrain into the rock's foot. Empty (contact null): 0 everywhere.
+inline constexpr double kGroundFeather = 3.0;
+struct GroundMask {
+  std::shared_ptr<const PlaneDistance> contact;
+  double ground = 0.0;   // the ground plane's z
+  double feather = 0.0;  // world units
+  double at(const Vec3d& p) const;
+};
+// From the bake source's rims on the plane `ground` (none: empty); `voxel` the grid's h.
+GroundMask groundMask(const AssetMeshes& source, std::optional<double> ground, double voxel);
+
+// R durability (normalised), G colluvium coverage, B curvature, A ground contact (GroundMask).
+TextureImage<std::uint8_t> bakeMask(const LodBake& bake, const RockLook& look, const GroundMask& ground);
 
 }  // namespace rockbake

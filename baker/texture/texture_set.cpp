@@ -1,5 +1,7 @@
 #include "texture/texture_set.h"
 
+#include <algorithm>
+#include <cmath>
 #include <ctime>
 #include <memory>
 #if defined(__GLIBC__)
@@ -33,6 +35,38 @@ void releaseFreedHeap() {
 
 }  // namespace
 
+namespace {
+
+// Occlusion at or below this (ORM's R: 1 open, 0 closed) counts as hidden.
+constexpr float kHiddenOcclusion = 0.1f;
+
+// Per triangle: on the ground plane facing down (a ground cap), or occluded at all three corners.
+HiddenTriangles hiddenSurface(const AssetMeshes& lod, const std::array<std::vector<float>, 2>& occlusion,
+                              double ground) {
+  HiddenTriangles hidden;
+  const std::array<const SurfaceMesh*, 2> surfaces{&lod.rock, &lod.colluvium};
+  for (std::size_t s = 0; s < 2; ++s) {
+    const SurfaceMesh& m = *surfaces[s];
+    hidden[s].assign(m.triangles.size(), 0);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& tri = m.triangles[t];
+      const auto& a = m.positions[tri[0]];
+      const auto& b = m.positions[tri[1]];
+      const auto& c = m.positions[tri[2]];
+      const double eps = 1e-5 * (1.0 + std::abs(ground));
+      const bool on_plane = std::max({double(a[2]), double(b[2]), double(c[2])}) <= ground + eps;
+      const double nz = (double(b[0]) - a[0]) * (double(c[1]) - a[1]) - (double(b[1]) - a[1]) * (double(c[0]) - a[0]);
+      const auto& o = occlusion[s];
+      const bool dark = o.size() == m.positions.size() && o[tri[0]] <= kHiddenOcclusion &&
+                        o[tri[1]] <= kHiddenOcclusion && o[tri[2]] <= kHiddenOcclusion;
+      hidden[s][t] = (on_plane && nz < 0) || dark;
+    }
+  }
+  return hidden;
+}
+
+}  // namespace
+
 TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
                           const TextureSetRequest& request) {
   const TextureParams& params = request.params;
@@ -51,10 +85,25 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   const double radius = rays->radius();
   const RockLook look(request.seed, radius, request.voxel_size, source.durability_range, request.varied);
   const double cage = params.cage > 0 ? params.cage : 0.1 * radius;
+  // Where the asset meets the ground, for the mask's alpha (bake_maps.h).
+  const GroundMask contact = groundMask(source, request.ground, request.voxel_size);
 
   // No LOD's maps larger than the source can fill (texture_params.h).
   const int useful = usefulMapSize(source.rock.triangles.size() + source.colluvium.triangles.size());
   std::vector<int> sizes(lods.size());
+
+  // Each LOD's occlusion, per vertex, before its atlas: it finds the hidden surface (uv_atlas.h: the
+  // ground caps and what no occlusion ray leaves) and is the ORM's. A vertex's rays are hashed from
+  // its position, so its copies along the seams would cast the same ones: they take its value.
+  std::vector<std::array<std::vector<float>, 2>> lod_occlusion(lods.size());
+  std::vector<HiddenTriangles> hidden(lods.size());
+  if (wantsMap(params, TextureMap::Orm) || request.ground) {
+    for (std::size_t k = 0; k < lods.size(); ++k) {
+      lod_occlusion[k] = vertexOcclusion(lods[k], *rays, params, request.seed);
+      if (request.ground) hidden[k] = hiddenSurface(lods[k], lod_occlusion[k], *request.ground);
+    }
+    step("occlusion");
+  }
 
   // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
   // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
@@ -63,11 +112,11 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     const int asked = lodMapSize(params, int(k));
     sizes[k] = std::min(asked, useful);
     try {
-      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding);
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
     } catch (const ChartsDoNotFit&) {
       if (sizes[k] == asked) throw;
       sizes[k] = asked;  // the gutters need the room the preset gave them
-      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding);
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
     }
   });
   releaseFreedHeap();
@@ -97,10 +146,9 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
 
     const LodBake bake{&atlas.meshes, &texels, &hits, &source};
     std::array<std::vector<float>, 2> occlusion;
-    if (wantsMap(params, TextureMap::Orm)) {
-      occlusion = vertexOcclusion(atlas.meshes, *rays, params, request.seed);
-      step(lod + " occlusion");
-    }
+    if (wantsMap(params, TextureMap::Orm))
+      for (std::size_t s = 0; s < 2; ++s)
+        for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
     if (k == 0) rays.reset();
     const auto record = [&](TextureMap map, int channels, int bits, const char* space) {
       const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
@@ -148,7 +196,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
           break;
         case TextureMap::Mask:
           write(
-              map, [&look](const LodBake& b) { return bakeMask(b, look); },
+              map, [&look, &contact](const LodBake& b) { return bakeMask(b, look, contact); },
               [&](const TextureBands<std::uint8_t>& made) {
                 writeTexturePng(record(map, 4, 8, "linear"), size, 4, false, rows, made);
               });

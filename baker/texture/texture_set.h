@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,10 +27,14 @@
 namespace rockbake {
 
 struct TextureSetRequest {
-  TextureParams params;          // the preset's texture: block
-  std::uint64_t seed = 0;        // the preset's seed: occlusion rays and the colour's noise
-  double voxel_size = 0.0;       // the grid's h, world units: the per-voxel colour variation's scale (0: none)
-  bool varied = true;            // the rock's look (rock_look.h) on the palette; false: its colours exactly
+  TextureParams params;     // the preset's texture: block
+  std::uint64_t seed = 0;   // the preset's seed: occlusion rays and the colour's noise
+  double voxel_size = 0.0;  // the grid's h, world units: the per-voxel colour variation's scale (0: none)
+  bool varied = true;       // the rock's look (rock_look.h) on the palette; false: its colours exactly
+  // The ground plane's z in the meshes' frame when the asset stands on it: its hidden surface is
+  // packed small (uv_atlas.h) and the mask's alpha is its ground contact (bake_maps.h). None: a
+  // free-standing rock, neither.
+  std::optional<double> ground;
   std::string name;              // the asset's: file names <name>_BaseColor.png, …
   std::filesystem::path folder;  // where the files go (created if missing)
   // Maps larger than kWholeMapSize are made and written in bands of this many rows, one band

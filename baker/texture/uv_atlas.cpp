@@ -1,5 +1,7 @@
 #include "texture/uv_atlas.h"
 
+#include "core/triangle_geometry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -14,6 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "core/disjoint_set.h"
 #include "core/edge_table.h"
 #include "core/vec3.h"
 #include "texture/pack_charts.h"
@@ -35,7 +38,9 @@ struct FlatChart {
 // and the halves of a chart split because it failed come back together where they can.
 // Smallest chart first, each tried against the kMergeTries neighbours it shares the longest
 // border with (docs/textures.md §1).
-void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts) {
+// `hidden` (per triangle, or empty): charts never merge across its boundary.
+void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts,
+                 const std::vector<std::uint8_t>& hidden) {
   constexpr std::size_t kMergeTries = 2;
   constexpr std::uint32_t kNoChart = 0xffffffffu;
   if (charts.size() < 2) return;
@@ -66,6 +71,7 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
       for (std::uint32_t k = 0; k < 3; ++k) {
         const std::uint32_t u = edges.faceAcross(3 * t + k);
         if (u == EdgeTable::kNone || owner[u] == c || owner[u] == kNoChart) continue;
+        if (!hidden.empty() && hidden[u] != hidden[t]) continue;  // hidden and seen surface stay apart
         const auto& tri = mesh.triangles[t];
         const double l = length(sub(toVec3d(mesh.positions[tri[(k + 1) % 3]]), toVec3d(mesh.positions[tri[k]])));
         const auto it = std::find_if(shared.begin(), shared.end(), [&](const auto& p) { return p.second == owner[u]; });
@@ -139,14 +145,26 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
 
 // Segments and flattens one surface; failing charts are split and flattened again, round by
 // round (each round in parallel, results in chart order).
-std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
-  const std::vector<std::uint32_t> chart_of = segmentCharts(mesh);
+// `hidden` (per triangle, or empty): each chart is cut along its boundary, and the pieces of
+// hidden surface are never merged with seen ones, so that they can be packed small.
+std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface, const std::vector<std::uint8_t>& hidden) {
+  std::vector<std::uint32_t> chart_of = segmentCharts(mesh);
+  const EdgeTable edges(mesh.triangles);
+  if (!hidden.empty()) {
+    // The connected pieces of each chart's hidden and seen triangles, numbered in order of first triangle.
+    DisjointSet pieces(chart_of.size());
+    for (std::uint32_t t = 0; t < chart_of.size(); ++t)
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t u = edges.faceAcross(3 * t + k);
+        if (u != EdgeTable::kNone && chart_of[u] == chart_of[t] && hidden[u] == hidden[t]) pieces.unite(t, u);
+      }
+    chart_of = pieces.labels();
+  }
   std::uint32_t count = 0;
   for (std::uint32_t c : chart_of) count = std::max(count, c + 1);
   std::vector<std::vector<std::uint32_t>> pending(count);
   for (std::uint32_t t = 0; t < chart_of.size(); ++t) pending[chart_of[t]].push_back(t);
 
-  const EdgeTable edges(mesh.triangles);
   std::vector<FlatChart> done;
   while (!pending.empty()) {
     std::vector<ChartUv> flat(pending.size());
@@ -166,7 +184,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
     }
     pending = std::move(again);
   }
-  mergeCharts(mesh, edges, done);
+  mergeCharts(mesh, edges, done, hidden);
   // Charts in order of their lowest triangle, whatever round finished them.
   std::sort(done.begin(), done.end(),
             [](const FlatChart& a, const FlatChart& b) { return a.triangles.front() < b.triangles.front(); });
@@ -177,7 +195,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface) {
 // triangles, every per-vertex array carried. To be replaced by the mesh kernel's vertex remap.
 SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const FlatChart*>& charts,
                             const std::vector<std::vector<std::array<double, 2>>>& atlas_uv,
-                            const std::vector<std::size_t>& chart_index) {
+                            const std::vector<std::size_t>& chart_index, std::vector<std::uint32_t>& source) {
   const std::size_t nt = mesh.triangles.size();
   // Per triangle: its chart and its position in the chart's triangle list.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> place(nt);
@@ -189,7 +207,7 @@ SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const Fla
   out.triangles.resize(nt);
   std::unordered_map<std::uint64_t, std::uint32_t> copy;  // (chart, chart vertex) → new vertex
   copy.reserve(2 * mesh.positions.size());
-  std::vector<std::uint32_t> source;  // new vertex → old
+  source.clear();  // new vertex → old
   for (std::size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const auto [c, i] = place[t];
@@ -220,19 +238,40 @@ SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const Fla
 
 }  // namespace
 
-UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
+UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding, const HiddenTriangles* hidden_triangles) {
   if (size < 1 || size > 8192 || padding < 0 || padding > 64)
     throw std::invalid_argument("buildUvAtlas: a " + std::to_string(size) + "² map with " + std::to_string(padding) +
                                 "-texel gutters is outside 1 … 8192 texels and 0 … 64 texels");
   const std::array<const SurfaceMesh*, 2> surfaces{&meshes.rock, &meshes.colluvium};
   std::array<std::vector<FlatChart>, 2> flat;
   // The surfaces are independent: each one's serial steps (segmentation, merging) overlap the other's.
-  tbb::parallel_invoke([&] { flat[0] = flattenSurface(*surfaces[0], 0); },
-                       [&] { flat[1] = flattenSurface(*surfaces[1], 1); });
+  const std::vector<std::uint8_t> none;
+  const auto hiddenOf = [&](int s) -> const std::vector<std::uint8_t>& {
+    return hidden_triangles && (*hidden_triangles)[std::size_t(s)].size() == surfaces[std::size_t(s)]->triangles.size()
+               ? (*hidden_triangles)[std::size_t(s)]
+               : none;
+  };
+  tbb::parallel_invoke([&] { flat[0] = flattenSurface(*surfaces[0], 0, hiddenOf(0)); },
+                       [&] { flat[1] = flattenSurface(*surfaces[1], 1, hiddenOf(1)); });
 
   std::vector<PackChart> packed;
   for (auto& charts : flat)
-    for (auto& c : charts) packed.push_back({c.uv.uv, c.uv.corners});
+    for (auto& c : charts) {
+      // A chart mostly hidden is packed small: the visible surface gets its texels.
+      const SurfaceMesh& m = *surfaces[std::size_t(c.surface)];
+      double area = 0, hidden = 0;
+      for (const std::uint32_t t : hidden_triangles ? c.triangles : std::vector<std::uint32_t>{}) {
+        const auto& tri = m.triangles[t];
+        const double a = triangleArea(m.positions[tri[0]], m.positions[tri[1]], m.positions[tri[2]]);
+        area += a;
+        const auto& flags = (*hidden_triangles)[std::size_t(c.surface)];
+        if (t < flags.size() && flags[t]) hidden += a;
+      }
+      PackChart chart{c.uv.uv, c.uv.corners};
+      if (area > 0 && hidden >= kHiddenShare * area)
+        for (auto& uv : chart.uv) uv = {uv[0] * kHiddenDensity, uv[1] * kHiddenDensity};
+      packed.push_back(std::move(chart));
+    }
   UvAtlas atlas;
   atlas.charts = packed.size();
   atlas.texels_per_unit = packCharts(packed, size, padding);
@@ -247,7 +286,8 @@ UvAtlas buildUvAtlas(const AssetMeshes& meshes, int size, int padding) {
     std::vector<std::size_t> index;
     for (const FlatChart& c : flat[s]) charts.push_back(&c), index.push_back(first + index.size());
     first += charts.size();
-    if (!surfaces[s]->triangles.empty()) *out[s] = splitAlongSeams(*surfaces[s], charts, uv, index);
+    if (!surfaces[s]->triangles.empty())
+      *out[s] = splitAlongSeams(*surfaces[s], charts, uv, index, atlas.source_vertex[std::size_t(s)]);
   }
   return atlas;
 }

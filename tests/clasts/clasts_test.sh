@@ -8,6 +8,7 @@
 #     no two overlapping by more than 10 % of the smaller's volume; none reaching into the rock;
 #   - instances: nodes clast_<k> share at most clasts.shapes meshes;
 #   - the same bytes at 1 and 2 threads (GLBs and the stones' maps);
+#   - stones keep their world size under --resolution (clasts.size scaled unless --set gives it);
 #   - bad clasts: settings refused with exit 2 and nothing written.
 # Usage: clasts_test.sh ROCKBAKE SOURCE_DIR
 set -euo pipefail
@@ -34,7 +35,7 @@ for preset in goblin talus-cliff; do
 done
 
 # Instances: several nodes, one mesh (glTF's own instancing), at most `shapes` meshes.
-/usr/bin/python3 - "$work/t1/goblin/rock.glb" <<'PY' || fail "goblin's stones are not instances"
+/usr/bin/python3 - "$work/t1/goblin/rock.glb" "$source_dir" <<'PY' || fail "goblin's stones are not instances of closed meshes"
 import json, struct, sys
 data = open(sys.argv[1], "rb").read()
 size = struct.unpack_from("<I", data, 12)[0]
@@ -45,7 +46,22 @@ assert len(stones) >= 100 and 1 <= len(meshes) <= 8, (len(stones), meshes)
 assert all(doc["meshes"][m]["name"].startswith("clast_shape_") for m in meshes)
 materials = {doc["meshes"][m]["primitives"][0]["material"] for m in meshes}
 assert len(materials) == 1, materials
-print(f"{len(stones)} stone nodes share {len(meshes)} meshes and one material")
+# Each stone mesh is closed: welded by position (a textured mesh is split along its uv seams),
+# every edge is shared by exactly two triangles, in opposite directions.
+import numpy as np
+sys.path.insert(0, sys.argv[2] + "/bench")
+from clast_figures import mesh_triangles, read_glb
+_, binary = read_glb(sys.argv[1])
+for m in meshes:
+    pos, idx = mesh_triangles(doc, binary, m)
+    _, weld = np.unique(pos.round(6), axis=0, return_inverse=True)
+    tri = weld.reshape(-1)[idx]
+    directed = {}
+    for a, b, c in tri:
+        for e in ((a, b), (b, c), (c, a)):
+            directed[e] = directed.get(e, 0) + 1
+    assert all(n == 1 and directed.get((e[1], e[0]), 0) == 1 for e, n in directed.items()), f"mesh {m} is not closed"
+print(f"{len(stones)} stone nodes share {len(meshes)} closed meshes and one material")
 PY
 
 # The same stones at any thread count.
@@ -55,6 +71,14 @@ for f in rock.glb rock_lod1.glb rock_lod3.glb textures/goblin_Clasts_BaseColor.p
   textures/goblin_Clasts_ORM.png; do
   cmp -s "$work/t1/goblin/$f" "$work/t2/goblin/$f" || fail "$f differs between 1 and 2 threads"
 done
+
+# Stones keep their size under --resolution: clasts.size is scaled from the preset's resolution
+# (96) to the one asked for, unless the command line gave it.
+sizes() { "$rockbake" preset show "$source_dir/presets/goblin.yaml" "$@" |
+  /usr/bin/python3 -c "import json,sys; print(json.load(sys.stdin)['clasts']['size'])"; }
+[ "$(sizes --resolution 48)" = "[0.5, 5.0]" ] || fail "--resolution 48 gave stones of $(sizes --resolution 48) voxels"
+[ "$(sizes --resolution 192)" = "[2.0, 20.0]" ] || fail "--resolution 192 gave $(sizes --resolution 192)"
+[ "$(sizes --resolution 48 --set 'clasts.size=[1, 10]')" = "[1.0, 10.0]" ] || fail "--set clasts.size was scaled"
 
 # Bad settings: exit 2, the message names the key, nothing written.
 for bad in 'clasts.size=[-1, 4]' 'clasts.count=6000' 'clasts.shapes=3' 'clasts.size=[8, 2]'; do

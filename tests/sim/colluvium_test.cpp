@@ -372,3 +372,36 @@ TEST(Colluvium, EveryVoxelIsAtRestAfterEveryCycle) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// A preset whose apron would reach the grid's side (docs/model.md §7, "At the grid's side"): a
+// broad column on a grid barely wider than it, weathered with a full yield and no removal. The
+// apron runs on past the side instead of standing against it, checked on the voxels: on the
+// outermost ring of columns it stands no higher than the talus slope down to the ground beyond
+// allows, and every voxel that left is counted in `removed`, so the cycles still add up.
+TEST(Colluvium, APresetsApronAtTheGridsSideIsNotCutOff) {
+  Preset p = test::neckPreset(3, RockfallMode::Drop);
+  p.grid.size = {2.2, 2.2, 4.0};
+  p.shape.kind = CylinderShape{1.0, 3.6};
+  p.colluvium = {1.0, 35.0, 0.0};
+  p.stop.cycles = 30;
+  const WeatheringResult r = weatherRock(buildInitialRock(resolveShape(p), p), p);
+  const GridLayout& g = r.rock.layout;
+  std::size_t removed = 0, deposited = 0, crumbled = 0;
+  for (const CycleStats& c : r.cycles) removed += c.removed, deposited += c.deposited, crumbled += c.crumbled;
+  EXPECT_GT(removed, 0u);  // some slid off: the apron reached the side
+  EXPECT_EQ(r.rock.count(Material::Colluvium), deposited + crumbled - removed);
+  const int allowed = 1 + int(std::ceil(std::tan(35.0 * std::numbers::pi / 180.0) * std::numbers::sqrt2));
+  const std::vector<int> heights = pileHeights(r.rock);
+  for (int i = 0; i < g.nx; ++i)
+    for (const auto& [x, y] : {std::pair{i, 0}, {i, g.ny - 1}})
+      ASSERT_LE(heights[std::size_t(x + g.nx * y)], allowed) << "column " << x << ", " << y;
+  for (int j = 0; j < g.ny; ++j)
+    for (const auto& [x, y] : {std::pair{0, j}, {g.nx - 1, j}})
+      ASSERT_LE(heights[std::size_t(x + g.nx * y)], allowed) << "column " << x << ", " << y;
+}
+
+}  // namespace
+}  // namespace rockbake

@@ -552,3 +552,33 @@ TEST(Dilate, EveryEmptyTexelCopiesTheNearestCoveredOne) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// The mask's alpha (bake_maps.h, GroundMask): 1 where a box standing on the ground meets it,
+// fading to 0 three voxels away, and 0 everywhere for an asset off the ground.
+TEST(BakeMaps, TheGroundContactFadesOverThreeVoxels) {
+  // A unit box on z = 0, counter-clockwise seen from outside, its floor the ground cap.
+  std::vector<std::array<float, 3>> p;
+  for (int i = 0; i < 8; ++i) p.push_back({float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)});
+  const std::vector<std::array<std::uint32_t, 3>> t = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6},
+                                                       {0, 1, 4}, {1, 5, 4}, {2, 6, 3}, {3, 6, 7},
+                                                       {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  AssetMeshes box = test::assetOf(test::surfaceOf(std::move(p), t));
+  box.bounds_min = {0, 0, 0}, box.bounds_max = {1, 1, 1};
+  const double voxel = 0.05;
+  const GroundMask mask = groundMask(box, 0.0, voxel);
+  ASSERT_TRUE(mask.contact);
+  // Within the distance grid's half-voxel cells of the exact smoothstep: 1 on the foot of a side,
+  // 1 - (1/9)(3 - 2/3) a voxel up.
+  EXPECT_NEAR(mask.at({1.0, 0.5, 0.0}), 1.0, 0.05);
+  EXPECT_NEAR(mask.at({1.0, 0.5, voxel}), 1.0 - (3.0 - 2.0 / 3.0) / 9.0, 0.05);
+  EXPECT_EQ(mask.at({1.0, 0.5, 3.01 * voxel}), 0.0);           // three voxels up
+  EXPECT_EQ(mask.at({0.5, 0.5, 1.0}), 0.0);                    // the top
+  EXPECT_FALSE(groundMask(box, std::nullopt, voxel).contact);  // off the ground: no contact
+  EXPECT_EQ(groundMask(box, std::nullopt, voxel).at({1.0, 0.5, 0.0}), 0.0);
+}
+
+}  // namespace
+}  // namespace rockbake

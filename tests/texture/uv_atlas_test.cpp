@@ -254,3 +254,45 @@ TEST(UvAtlas, Deterministic) {
 
 }  // namespace
 }  // namespace rockbake
+
+namespace rockbake {
+namespace {
+
+// Hidden surface (docs/textures.md, "Hidden surface"): the sphere's lower half marked hidden is
+// cut from the upper half's charts and packed at a quarter of their density, so its uv area is
+// about a sixteenth of the upper half's (both halves have the same surface area); without the
+// marks it is of the same order (LSCM's stretch differs chart by chart). The atlas stays valid.
+TEST(UvAtlas, HiddenSurfaceGetsASixteenthOfTheTexels) {
+  const AssetMeshes sphere = test::assetOf(test::sphereSurface(4));
+  HiddenTriangles hidden;
+  const SurfaceMesh& s = sphere.rock;
+  for (const auto& t : s.triangles)
+    hidden[0].push_back(s.positions[t[0]][2] + s.positions[t[1]][2] + s.positions[t[2]][2] < 0 ? 1 : 0);
+  const auto halves = [&](const UvAtlas& atlas) {
+    std::array<double, 2> uv_area{0, 0};
+    const SurfaceMesh& m = atlas.meshes.rock;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+      const auto& a = m.uvs[m.triangles[t][0]];
+      const auto& b = m.uvs[m.triangles[t][1]];
+      const auto& c = m.uvs[m.triangles[t][2]];
+      uv_area[hidden[0][t]] += 0.5 * std::abs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+    }
+    return uv_area;
+  };
+  const TextureParams params = atlasParams(512, 4);
+  const UvAtlas plain = buildUvAtlas(sphere, params.size, params.padding);
+  const UvAtlas packed = buildUvAtlas(sphere, params.size, params.padding, &hidden);
+  const auto [seen0, hidden0] = halves(plain);
+  const auto [seen1, hidden1] = halves(packed);
+  std::printf("uv area hidden / seen: %.4f unmarked, %.4f marked\n", hidden0 / seen0, hidden1 / seen1);
+  EXPECT_NEAR(hidden1 / seen1, kHiddenDensity * kHiddenDensity, 0.02);  // the halves' surface areas are equal
+  EXPECT_GT(hidden0 / seen0, 0.5);
+  EXPECT_GT(packed.texels_per_unit, 1.2 * plain.texels_per_unit);  // the seen half got the texels
+  expectSameSurface(sphere.rock, packed.meshes.rock);
+  const AtlasCheck check = checkAtlas(packed, params);
+  EXPECT_EQ(check.contested, 0u);
+  EXPECT_EQ(check.too_close, 0u);
+}
+
+}  // namespace
+}  // namespace rockbake
