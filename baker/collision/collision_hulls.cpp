@@ -53,6 +53,20 @@ ConvexHull finishHull(const MergedPiece& piece, int max_vertices, const GridLayo
 
 }  // namespace
 
+ConvexHull stoneHull(const std::vector<Vec3d>& points, int max_vertices) {
+  const TriangulatedHull t = triangulateHull(reduceHull(hullOfPoints(points), max_vertices).vertices);
+  ConvexHull hull;
+  hull.positions = t.vertices;
+  hull.triangles = t.triangles;
+  // The volume about the hull's first vertex: the stones lie far from the origin for their size.
+  const Vec3d o = hull.positions.empty() ? Vec3d{} : hull.positions[0];
+  for (const auto& tri : hull.triangles)
+    hull.volume +=
+        dot(sub(hull.positions[tri[0]], o), cross(sub(hull.positions[tri[1]], o), sub(hull.positions[tri[2]], o))) /
+        6.0;
+  return hull;
+}
+
 std::vector<ConvexHull> hullVoxels(const VoxelRock& rock, Material material, const CollisionParams& params) {
   checkParams(params);
   const VoxelBounds bounds = materialBounds(rock, material);

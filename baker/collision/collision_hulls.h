@@ -37,9 +37,16 @@ struct ConvexHull {
 struct CollisionHulls {
   std::vector<ConvexHull> rock;       // largest first
   std::vector<ConvexHull> colluvium;  // largest first; empty unless CollisionParams::colluvium
+  // With CollisionParams::colluvium, the stones on the apron (docs/model.md §13), stone k's hull
+  // at k, the largest max_hulls of them (added by the caller: stoneHull).
+  std::vector<ConvexHull> stones;
 };
 
 CollisionHulls buildCollisionHulls(const VoxelRock& rock, const CollisionParams& params);
+
+// The convex hull of one stone's points (world units), its vertices capped at max_vertices the
+// way the voxels' hulls are (reduce_hull.h: it still holds every point).
+ConvexHull stoneHull(const std::vector<Vec3d>& points, int max_vertices);
 
 // The hulls of one material's voxels (none when it has none), largest first.
 std::vector<ConvexHull> hullVoxels(const VoxelRock& rock, Material material, const CollisionParams& params);

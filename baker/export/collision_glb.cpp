@@ -81,6 +81,16 @@ std::string collisionNodeName(HullNaming naming, const std::string& surface, std
   throw std::logic_error("collisionNodeName: unknown naming");
 }
 
+std::string stoneCollisionNodeName(HullNaming naming, std::size_t stone) {
+  switch (naming) {
+    case HullNaming::Unreal:
+      return fmt::format("UCX_clast_{}_00", stone);
+    case HullNaming::Godot:
+      return fmt::format("clast_{}_00-convcolonly", stone);
+  }
+  throw std::logic_error("stoneCollisionNodeName: unknown naming");
+}
+
 void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNaming naming,
                        const std::filesystem::path& file) {
   tinygltf::Model model;
@@ -94,6 +104,8 @@ void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNami
     for (const auto& [surface, list] : {std::pair{"rock", &hulls.rock}, std::pair{"colluvium", &hulls.colluvium}})
       for (std::size_t i = 0; i < list->size(); ++i)
         addHull(model, (*list)[i], pivot, collisionNodeName(naming, surface, i));
+    for (std::size_t k = 0; k < hulls.stones.size(); ++k)
+      addHull(model, hulls.stones[k], pivot, stoneCollisionNodeName(naming, k));
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }

@@ -22,8 +22,12 @@ namespace rockbake {
 // "UCX_rock_lod0_00", Godot "rock_lod0_00-convcolonly".
 std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index);
 
+// The node name of stone k's hull, built on its node in rock.glb (clast_<k>): Unreal
+// "UCX_clast_<k>_00", Godot "clast_<k>_00-convcolonly".
+std::string stoneCollisionNodeName(HullNaming naming, std::size_t stone);
+
 // `pivot`: the world position of the asset's origin (footprintPivot). The rock's
-// hulls come first, then the colluvium's. Throws std::runtime_error on failure.
+// hulls come first, then the colluvium's, then the stones'. Throws std::runtime_error on failure.
 void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNaming naming,
                        const std::filesystem::path& file);
 

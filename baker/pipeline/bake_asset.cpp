@@ -295,22 +295,33 @@ std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered, Clas
   return meshes;
 }
 
-// collision.glb when export lists collision (pipeline/bake_collision.h), around the meshes' pivot.
-std::optional<AssetCollision> collide(Bake& bake, const Weathered& weathered) {
+// The voxels' collision hulls when export lists collision (collision/collision_hulls.h).
+std::optional<CollisionHulls> collide(Bake& bake, const Weathered& weathered) {
   if (!exportsFormat(bake.preset, "collision")) return std::nullopt;
   Stopwatch clock;
-  AssetCollision collision =
-      bakeCollision(weathered.rock, bake.preset.collision,
-                    footprintPivot(weathered.rock, sinkDepth(weathered.rock, bake.preset.mesh.sink)), bake.dir());
+  CollisionHulls hulls = buildCollisionHulls(weathered.rock, bake.preset.collision);
   bake.timings.collision = clock.lap();
-  return collision;
+  return hulls;
 }
 
 struct Shapes {
   std::optional<MeshStageResult> meshes;
-  std::optional<AssetCollision> collision;
+  std::optional<CollisionHulls> hulls;
   ClastStage clasts;  // none without clasts:, ground or colluvium
 };
+
+// collision.glb (pipeline/bake_collision.h), around the meshes' pivot, with the stones' hulls when
+// collision.colluvium asks for them.
+std::optional<AssetCollision> writeCollision(Bake& bake, const Weathered& weathered, Shapes& shapes) {
+  if (!shapes.hulls) return std::nullopt;
+  Stopwatch clock;
+  const auto pivot = footprintPivot(weathered.rock, sinkDepth(weathered.rock, bake.preset.mesh.sink));
+  AssetCollision collision =
+      writeAssetCollision(std::move(*shapes.hulls), bake.preset.collision, pivot, bake.dir(), &shapes.clasts.set);
+  shapes.hulls.reset();
+  *bake.timings.collision += clock.lap();
+  return collision;
+}
 
 // The meshes and the collision hulls, none with --no-mesh. Both read the weathered rock alone, so they are made
 // side by side: the hulls take up the cores the mesh stage's serial steps leave idle. Each is the same at any
@@ -321,7 +332,7 @@ Shapes meshAndCollide(Bake& bake, const Weathered& weathered) {
   if (!bake.options.mesh) return shapes;
   bake.progress(0.7, "mesh");
   sideBySide([&] { shapes.meshes = mesh(bake, weathered, shapes.clasts); },
-             [&] { shapes.collision = collide(bake, weathered); });
+             [&] { shapes.hulls = collide(bake, weathered); });
   bake.clock.lap();
   return shapes;
 }
@@ -535,7 +546,9 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   // A helper program that is missing is said before the simulation, not after it.
   if (options.mesh && options.render) requireHelperPrograms(preset.render.turntable_frames > 0);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
-  auto [meshes, collision, clasts] = meshAndCollide(bake, weathered);
+  Shapes shapes = meshAndCollide(bake, weathered);
+  auto& [meshes, hulls, clasts] = shapes;
+  const std::optional<AssetCollision> collision = writeCollision(bake, weathered, shapes);
   const std::optional<TextureSet> textures = texture(bake, weathered, meshes, clasts);
   exportFiles(bake, weathered, meshes, textures, clasts.set);
   render(bake, meshes, textures, clasts.set);

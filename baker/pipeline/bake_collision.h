@@ -11,6 +11,8 @@
 #include <array>
 #include <filesystem>
 
+#include "collision/collision_hulls.h"
+#include "core/clast_set.h"
 #include "core/voxel_rock.h"
 #include "pipeline/asset_json.h"
 #include "preset/preset.h"
@@ -21,5 +23,13 @@ inline constexpr const char* kCollisionFile = "collision.glb";
 
 AssetCollision bakeCollision(const VoxelRock& rock, const CollisionParams& params, const std::array<double, 3>& pivot,
                              const std::filesystem::path& asset_dir);
+
+// The same in two steps, so that the voxels' hulls (the slow part) can be made beside the meshes
+// and the stones' added once they lie on the apron: `hulls` from buildCollisionHulls; with
+// params.colluvium and `stones`, the hulls of the largest max_hulls stones are added (stoneHull,
+// nodes named after the stones' own, stoneCollisionNodeName) before the file is written.
+AssetCollision writeAssetCollision(CollisionHulls hulls, const CollisionParams& params,
+                                   const std::array<double, 3>& pivot, const std::filesystem::path& asset_dir,
+                                   const ClastSet* stones = nullptr);
 
 }  // namespace rockbake

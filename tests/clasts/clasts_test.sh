@@ -72,6 +72,18 @@ for f in rock.glb rock_lod1.glb rock_lod3.glb textures/goblin_Clasts_BaseColor.p
   cmp -s "$work/t1/goblin/$f" "$work/t2/goblin/$f" || fail "$f differs between 1 and 2 threads"
 done
 
+# Collision: no stone hulls by default; with collision.colluvium, the largest max_hulls stones get
+# one each, named after their nodes, listed in asset.json.
+stone_hulls() { /usr/bin/python3 -c "
+import json, sys
+hulls = [h['node'] for h in json.load(open(sys.argv[1] + '/asset.json'))['collision']['hulls']]
+print(sum(1 for n in hulls if n.startswith('UCX_clast_')))" "$1"; }
+[ "$(stone_hulls "$work/t1/goblin")" = 0 ] || fail "stones got hulls without collision.colluvium"
+"$rockbake" bake "$source_dir/presets/goblin.yaml" -o "$work/hulls" --resolution 48 --no-render --no-textures \
+  --set collision.colluvium=true --set collision.max_hulls=8 > "$work/hulls.log" 2>&1 || { cat "$work/hulls.log"; fail "hulls"; }
+[ "$(stone_hulls "$work/hulls/goblin")" = 8 ] || fail "collision.colluvium gave $(stone_hulls "$work/hulls/goblin") stone hulls, not 8"
+grep -qa "UCX_clast_7_00" "$work/hulls/goblin/collision.glb" || fail "collision.glb has no UCX_clast_7_00"
+
 # Stones keep their size under --resolution: clasts.size is scaled from the preset's resolution
 # (96) to the one asked for, unless the command line gave it.
 sizes() { "$rockbake" preset show "$source_dir/presets/goblin.yaml" "$@" |

@@ -63,9 +63,9 @@ void expectCollisionAsset(const fs::path& asset, const std::string& naming, bool
   std::set<std::string> render_names;
   for (const tinygltf::Node& node : render_meshes.nodes) render_names.insert(node.name);
 
-  // Names: the engine's pattern around the name of a mesh rock.glb holds.
-  const std::regex pattern(naming == "unreal" ? "UCX_(rock_lod0|colluvium_lod0)_([0-9]{2})"
-                                              : "(rock_lod0|colluvium_lod0)_([0-9]{2})-convcolonly");
+  // Names: the engine's pattern around the name of a mesh (or, for a stone, the node) rock.glb holds.
+  const std::regex pattern(naming == "unreal" ? "UCX_(rock_lod0|colluvium_lod0|clast_[0-9]+)_([0-9]{2})"
+                                              : "(rock_lod0|colluvium_lod0|clast_[0-9]+)_([0-9]{2})-convcolonly");
   std::map<std::string, int> per_surface;
   Box rock_hulls;
   for (const test::NamedHull& h : hulls) {
