@@ -41,20 +41,17 @@ void shapeApronToe(AssetMeshes& meshes, const GridLayout& g, const ApronToeParam
   const PlaneDistance rock(groundCapRim(meshes.rock, 0.0, eps, 0.5 * h), lo, hi, 0.5 * h);
   if (rim.empty() || rock.empty()) return;
   const double spread = band * (cot(params.angle) - cot(kRimSlope));  // at the rim
-  const double reach = band * cot(kRimSlope) + h;                     // how far in from the rim the band's vertices lie
   const std::vector<std::uint8_t> grounded = onGroundPieces(c, eps);
   bool moved = false;
   for (std::size_t v = 0; v < c.positions.size(); ++v) {
     auto& p = c.positions[v];
     const double z = p[2];
     if (!grounded[v] || z >= band) continue;
+    // The rim moves out by `spread`, the band less with height, and inwards of the rim half a
+    // distance less per distance: the shift falls by half of what a vertex lies further in, so
+    // nothing overtakes what lies beyond it and nothing folds.
     const double e = rim.at(p[0], p[1]);
-    double shift;
-    if (z <= eps)  // the ground cap: its rim goes all the way, its inside less and less (no fold)
-      shift = spread * std::max(0.0, 1.0 - e / (2.0 * spread));
-    else  // the band: to z cot(angle) inside the moved rim, near the rim only (a thin veneer far inside stays)
-      shift = std::clamp(spread + e - z * cot(params.angle), 0.0, spread) *
-              std::clamp(1.0 - (e - reach) / (2.0 * h), 0.0, 1.0);
+    const double shift = spread * (1.0 - std::max(0.0, z) / band) - 0.5 * e;
     if (shift <= 0) continue;
     const std::array<double, 2> out = rock.gradient(p[0], p[1]);
     const double norm = std::hypot(out[0], out[1]);

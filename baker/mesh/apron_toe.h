@@ -1,13 +1,15 @@
 // The debris apron's toe (docs/model.md §7, "The toe"). A pile of voxels ends at its rim in a
 // step a voxel high, which smoothing rounds into a lip; a real talus apron runs out onto the
 // ground along a long, gentle toe. The lowest `height` of every piece of colluvium resting on the
-// ground is spread outwards, away from the rock: a vertex at height z < height near the apron's
-// outer rim moves out by (height − z)(cot angle − cot kRimSlope), so that the band below `height`,
-// about kRimSlope steep as the smoothed voxels leave it (goblin: 72°), comes to slope at `angle`; the ground cap under
-// it follows, less and less inwards, so nothing folds. "Outwards" is along the gradient of the horizontal distance from
-// the rock's own contact with the ground; "near the rim" is within the band's own width of the apron's outer rim
-// (mesh/ground_contact.h). Heights do not change, so the apron keeps its height and its slope above the band; its
-// footprint grows by the toe. Normals are recomputed.
+// ground is spread outwards, away from the rock: with s = height (cot angle − cot kRimSlope) (the
+// band is about kRimSlope steep as the smoothed voxels leave it: 72° on goblin), a vertex at
+// height z and horizontal distance e inside the apron's outer rim (mesh/ground_contact.h) moves
+// out by max(0, s (1 − z / height) − e / 2). The rim moves out by s, the band the less the higher
+// it lies, so it comes to slope at about `angle`; further in, the shift falls by half of what a
+// vertex lies further in, so nothing overtakes what lies beyond it and nothing folds. "Outwards"
+// is along the gradient of the horizontal distance from the rock's own contact with the ground.
+// Heights do not change: the apron keeps its height and its slope above the band; its footprint
+// grows by the toe. Normals are recomputed.
 #pragma once
 
 #include "core/surface_mesh.h"
@@ -19,8 +21,8 @@ namespace rockbake {
 inline constexpr double kRimSlope = 70.0;
 
 struct ApronToeParams {
-  double angle = 12.0;   // degrees, (0, kRimSlope): the toe's slope
-  double height = 1.25;  // voxels: how high the toe reaches
+  double angle = 12.0;  // degrees, (0, kRimSlope): the toe's slope
+  double height = 1.5;  // voxels: how high the toe reaches
 };
 
 // `meshes` in the grid's world frame (before the pivot), both surfaces; changes the colluvium.
