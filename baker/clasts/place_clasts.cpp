@@ -203,10 +203,6 @@ bool rest(ClastInstance& s, const SurfaceMesh& shape, const ApronHeight& height,
 
 }  // namespace
 
-std::array<double, 3> clastVertex(const ClastInstance& stone, const std::array<float, 3>& v) {
-  return add(stone.translation, scale(rotate(stone.rotation, toVec3d(v)), stone.scale));
-}
-
 std::vector<ClastInstance> placeClasts(const ClastPlacement& in) {
   const VoxelRock& rock = *in.rock;
   const GridLayout& g = rock.layout;

@@ -33,7 +33,4 @@ inline constexpr int kClastTries = 40;
 // The stones, largest first. None when the rock has no colluvium or no ground.
 std::vector<ClastInstance> placeClasts(const ClastPlacement& placement);
 
-// Where a stone's vertex lands (ClastInstance's transform).
-std::array<double, 3> clastVertex(const ClastInstance& stone, const std::array<float, 3>& v);
-
 }  // namespace rockbake

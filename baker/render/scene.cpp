@@ -132,36 +132,34 @@ void writeMesh2(std::ostream& out, const SurfaceMesh& mesh, const std::string& n
   out << (mapped ? "\n  }\n#end\n}\n" : "\n  }\n}\n");
 }
 
-// The stones (core/clast_set.h): a mesh2 per shape used, in the rock's grain and bump, and the
-// apron redeclared as the union of its surface and the stones, so that every template that shows
-// Rockbake_Colluvium shows them. POV-Ray's frame swaps y and z (a reflection P), so a stone's
-// matrix is s · P R P, written column by column (POV-Ray's rows) with P t.
+// The stones (core/clast_set.h), placed and merged into one mesh2, Rockbake_Clasts, in vertex
+// colours with the rock's grain and bump, and the apron redeclared as the union of its surface and
+// the stones, so that every template that shows Rockbake_Colluvium shows them. One mesh of every
+// stone's triangles traces faster than an object per stone (its octree bounds them all).
 void writeClasts(std::ostream& out, const ClastSet& set) {
-  std::vector<bool> used(set.shapes.size(), false);
-  for (const ClastInstance& stone : set.stones) used.at(std::size_t(stone.shape)) = true;
-  for (std::size_t k = 0; k < set.shapes.size(); ++k)
-    if (used[k]) writeMesh2(out, set.shapes[k], "Rockbake_Clast_" + std::to_string(k), false, "Rockbake_Rock");
-  out << "#declare Rockbake_Colluvium = union {\n  object { Rockbake_Colluvium_Apron }\n";
-  char buf[512];
+  SurfaceMesh all;
+  all.name = "clasts";
   for (const ClastInstance& stone : set.stones) {
-    const auto& q = stone.rotation;
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    const int p[3] = {0, 2, 1};  // P: POV-Ray axis i is world axis p[i]
-    double a[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) a[i][j] = stone.scale * r[p[i]][p[j]];
-    const auto& t = stone.translation;
-    std::snprintf(buf, sizeof buf,
-                  "  object { Rockbake_Clast_%d matrix <%.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, %.7g, "
-                  "%.7g, %.7g> }\n",
-                  stone.shape, a[0][0], a[1][0], a[2][0], a[0][1], a[1][1], a[2][1], a[0][2], a[1][2], a[2][2], t[0],
-                  t[2], t[1]);
-    out << buf;
+    const SurfaceMesh& shape = set.shapes.at(std::size_t(stone.shape));
+    const auto base = std::uint32_t(all.positions.size());
+    ClastInstance turn = stone;  // the rotation alone, for the normals
+    turn.translation = {0, 0, 0};
+    turn.scale = 1.0;
+    for (std::size_t v = 0; v < shape.positions.size(); ++v) {
+      const auto p = clastVertex(stone, shape.positions[v]);
+      all.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
+      if (shape.normals.size() == shape.positions.size()) {
+        const auto n = clastVertex(turn, shape.normals[v]);
+        all.normals.push_back({float(n[0]), float(n[1]), float(n[2])});
+      }
+      all.colors.push_back(v < shape.colors.size() ? shape.colors[v] : std::array<float, 3>{0.18f, 0.18f, 0.18f});
+    }
+    for (const auto& t : shape.triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   }
-  out << "}\n";
+  if (all.normals.size() != all.positions.size()) all.normals.clear();
+  writeMesh2(out, all, "Rockbake_Clasts", false, "Rockbake_Rock");
+  out << "#declare Rockbake_Colluvium = union {\n  object { Rockbake_Colluvium_Apron }\n  object { Rockbake_Clasts "
+         "}\n}\n";
 }
 
 // The texture a template gets with Rockbake_Use_Maps: the base colour through the uvs (no bump: RenderMaps).

@@ -88,8 +88,8 @@ struct RenderMaps {
 // include is as above, whatever the template sets.
 //
 // With `clasts` (stones on the apron) the colluvium's surface is declared as
-// Rockbake_Colluvium_Apron and Rockbake_Colluvium is the union of it and the stones, each a
-// mesh2 Rockbake_Clast_<shape> in vertex colours with the rock's grain and bump.
+// Rockbake_Colluvium_Apron and Rockbake_Colluvium is the union of it and the stones, placed and
+// merged into one mesh2 Rockbake_Clasts in vertex colours with the rock's grain and bump.
 void writeMeshInclude(const AssetMeshes& meshes, const std::filesystem::path& file, const RenderMaps& maps = {},
                       const ClastSet* clasts = nullptr);
 
