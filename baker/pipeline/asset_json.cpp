@@ -12,6 +12,7 @@
 #include "core/colour.h"
 #include "core/triangle_geometry.h"
 #include "mesh/extract_surfaces.h"
+#include "texture/pack_charts.h"
 
 namespace rockbake {
 
@@ -56,28 +57,6 @@ namespace {
 
 double rounded(double v) {
   return std::round(v * 1e6) / 1e6;
-}
-
-// Andrew's monotone chain: the convex hull of `points`, counter-clockwise, from the lowest (x, y).
-std::vector<std::array<double, 2>> convexHull(std::vector<std::array<double, 2>> points) {
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  const auto turn = [](const auto& o, const auto& a, const auto& b) {
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-  };
-  std::vector<std::array<double, 2>> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);
-  return hull;
 }
 
 }  // namespace

@@ -27,25 +27,6 @@ double cross(const UV& o, const UV& a, const UV& b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 
-// Andrew's monotone chain, counter-clockwise.
-std::vector<UV> convexHull(std::vector<UV> p) {
-  std::sort(p.begin(), p.end());
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<UV> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
 // The chart turned so that its bounding rectangle is smallest and wider than tall, moved to
 // the origin: a rotation (cos, sin) and the rotated chart's lower corner.
 struct Placement {
@@ -395,6 +376,25 @@ int drop(const std::vector<std::array<Footprint, 4>>& prints, const std::vector<
 }
 
 }  // namespace
+
+std::vector<std::array<double, 2>> convexHull(std::vector<std::array<double, 2>> p) {
+  using UV = std::array<double, 2>;
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<UV> h(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
 
 double convexHullArea(const std::vector<UV>& points) {
   const std::vector<UV> hull = convexHull(points);

@@ -48,6 +48,10 @@ struct PackWork {
 // with their gutters).
 double packCharts(std::vector<PackChart>& charts, int size, int padding, PackWork* work = nullptr);
 
+// The convex hull of points in the plane (Andrew's monotone chain): its corners counter-clockwise
+// from the lowest (x, y), each once; fewer than three points as they are, sorted, without repeats.
+std::vector<std::array<double, 2>> convexHull(std::vector<std::array<double, 2>> points);
+
 // The area of the convex hull of points in the plane (0 for fewer than three points apart).
 double convexHullArea(const std::vector<std::array<double, 2>>& points);
 
