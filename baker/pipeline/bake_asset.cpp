@@ -257,8 +257,6 @@ std::vector<double> placeClastsOnApron(Bake& bake, const Weathered& weathered, c
   return targets;
 }
 
-// The meshes in memory: LOD0, the stones, the LOD chain and, for a texture set, the bake source
-// (pipeline/bake_meshes.h).
 // mesh.sink must leave some of the rock above the ground.
 void checkSink(const Bake& bake, const VoxelRock& rock) {
   const double sink = sinkDepth(rock, bake.preset.mesh.sink);
@@ -278,6 +276,8 @@ void checkSink(const Bake& bake, const VoxelRock& rock) {
                      "give a depth below the rock's height, or `suggested` for the depth asset.json suggests");
 }
 
+// The meshes in memory: LOD0, the stones, the LOD chain and, for a texture set, the bake source
+// (pipeline/bake_meshes.h).
 std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered, ClastStage& clasts) {
   checkSink(bake, weathered.rock);
   MeshStageResult meshes = buildMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
