@@ -22,12 +22,6 @@ Quat aboutAxis(const Vec3d& unit_axis, double radians) {
   return {unit_axis[0] * s, unit_axis[1] * s, unit_axis[2] * s, std::cos(0.5 * radians)};
 }
 
-Vec3d rotate(const Quat& q, const Vec3d& v) {
-  const Vec3d u{q[0], q[1], q[2]};
-  const Vec3d t = scale(cross(u, v), 2.0);
-  return add(add(v, scale(t, q[3])), cross(u, t));
-}
-
 // The apron's and the ground's top surface about the pivot, sampled every quarter voxel: the highest
 // point of LOD0's colluvium surface above each sample, the ground where there is none.
 class ApronHeight {
@@ -186,8 +180,8 @@ bool rest(ClastInstance& s, const SurfaceMesh& shape, const ApronHeight& height,
   double lift = std::numeric_limits<double>::lowest();
   double lowest = std::numeric_limits<double>::max(), lowest_ground = 0;
   for (const auto& v : shape.positions) {
-    const Vec3d w = scale(rotate(s.rotation, toVec3d(v)), s.scale);
-    const double px = x + w[0], py = y + w[1];
+    const Vec3d w = clastVertex(s, v);  // s.translation is (x, y, 0) until it rests
+    const double px = w[0], py = w[1];
     if (!height.inside(px, py)) return false;
     const int cx = int(std::floor((px + pivot[0] - g.origin[0]) / g.h));
     const int cy = int(std::floor((py + pivot[1] - g.origin[1]) / g.h));

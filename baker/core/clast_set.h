@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/surface_mesh.h"
+#include "core/vec3.h"
 
 namespace rockbake {
 
@@ -38,12 +39,9 @@ struct ClastSet {
 // Where vertex `v` of a stone's shape lands, about the pivot (ClastInstance's transform).
 inline std::array<double, 3> clastVertex(const ClastInstance& stone, const std::array<float, 3>& v) {
   const auto& q = stone.rotation;
-  const std::array<double, 3> u{q[0], q[1], q[2]}, p{v[0], v[1], v[2]};
-  const auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
+  const Vec3d u{q[0], q[1], q[2]}, p = toVec3d(v);
   // p + 2w (u × p) + 2 u × (u × p): the unit quaternion's rotation.
-  const std::array<double, 3> t = cross(u, p), tt = cross(u, t);
+  const Vec3d t = cross(u, p), tt = cross(u, t);
   std::array<double, 3> out{};
   for (int a = 0; a < 3; ++a) out[a] = stone.translation[a] + stone.scale * (p[a] + 2 * q[3] * t[a] + 2 * tt[a]);
   return out;

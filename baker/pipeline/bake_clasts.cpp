@@ -8,6 +8,7 @@
 #include "clasts/place_clasts.h"
 #include "core/hash.h"
 #include "core/mesh_checks.h"
+#include "core/vertex_remap.h"
 #include "mesh/bake_attributes.h"
 #include "sim/grid_layout.h"
 #include "sim/weathering.h"
@@ -102,49 +103,43 @@ SurfaceMesh laidInARow(const std::vector<SurfaceMesh>& shapes) {
   for (std::size_t k = 0; k < shapes.size(); ++k) {
     const SurfaceMesh& m = shapes[k];
     const auto base = std::uint32_t(row.positions.size());
-    for (auto p : m.positions) row.positions.push_back({p[0] + float(kSpacing * double(k)), p[1], p[2]});
-    row.normals.insert(row.normals.end(), m.normals.begin(), m.normals.end());
-    row.durability.insert(row.durability.end(), m.durability.begin(), m.durability.end());
-    row.colluvium.insert(row.colluvium.end(), m.colluvium.begin(), m.colluvium.end());
-    row.curvature.insert(row.curvature.end(), m.curvature.begin(), m.curvature.end());
-    row.altitude.insert(row.altitude.end(), m.altitude.begin(), m.altitude.end());
-    row.colors.insert(row.colors.end(), m.colors.begin(), m.colors.end());
+    std::apply(
+        [&](const auto&... array) {
+          ((row.*(array.member))
+               .insert((row.*(array.member)).end(), (m.*(array.member)).begin(), (m.*(array.member)).end()),
+           ...);
+        },
+        kVertexArrays);
+    for (std::size_t v = base; v < row.positions.size(); ++v) row.positions[v][0] += float(kSpacing * double(k));
     for (const auto& t : m.triangles) row.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   }
   return row;
 }
 
 // The inverse of laidInARow on an unwrapped row: each shape's triangles (by where they lie) with
-// the vertices they use, moved back.
+// the vertices they use, in order of first use, moved back.
 std::vector<SurfaceMesh> splitRow(const SurfaceMesh& row, std::size_t shapes) {
-  std::vector<SurfaceMesh> out(shapes);
-  std::vector<std::vector<std::uint32_t>> index(shapes, std::vector<std::uint32_t>(row.positions.size(), UINT32_MAX));
+  std::vector<std::vector<std::uint32_t>> source(shapes);
+  std::vector<std::vector<std::uint32_t>> index(shapes,
+                                                std::vector<std::uint32_t>(row.positions.size(), kDroppedVertex));
+  std::vector<std::vector<std::array<std::uint32_t, 3>>> triangles(shapes);
   for (const auto& t : row.triangles) {
     const double x = (double(row.positions[t[0]][0]) + row.positions[t[1]][0] + row.positions[t[2]][0]) / 3.0;
     const std::size_t k = std::size_t(std::clamp(std::lround(x / kSpacing), 0L, long(shapes) - 1));
-    SurfaceMesh& m = out[k];
     std::array<std::uint32_t, 3> local{};
     for (int c = 0; c < 3; ++c) {
       std::uint32_t& at = index[k][t[c]];
-      if (at == UINT32_MAX) {
-        at = std::uint32_t(m.positions.size());
-        const auto v = t[c];
-        const auto& p = row.positions[v];
-        m.positions.push_back({float(p[0] - kSpacing * double(k)), p[1], p[2]});
-        m.normals.push_back(row.normals[v]);
-        m.durability.push_back(row.durability[v]);
-        m.colluvium.push_back(row.colluvium[v]);
-        m.curvature.push_back(row.curvature[v]);
-        m.altitude.push_back(row.altitude[v]);
-        m.colors.push_back(row.colors[v]);
-        m.uvs.push_back(row.uvs[v]);
-        m.tangents.push_back(row.tangents[v]);
-      }
+      if (at == kDroppedVertex) at = std::uint32_t(source[k].size()), source[k].push_back(t[c]);
       local[c] = at;
     }
-    m.triangles.push_back(local);
+    triangles[k].push_back(local);
   }
-  for (SurfaceMesh& m : out) m.name = "clast";
+  std::vector<SurfaceMesh> out(shapes);
+  for (std::size_t k = 0; k < shapes; ++k) {
+    out[k] = gatherVertices(row, source[k]);
+    out[k].triangles = std::move(triangles[k]);
+    for (auto& p : out[k].positions) p[0] = float(p[0] - kSpacing * double(k));
+  }
   return out;
 }
 

@@ -86,7 +86,8 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   const RockLook look(request.seed, radius, request.voxel_size, source.durability_range, request.varied);
   const double cage = params.cage > 0 ? params.cage : 0.1 * radius;
   // Where the asset meets the ground, for the mask's alpha (bake_maps.h).
-  const GroundMask contact = groundMask(source, request.ground, request.voxel_size);
+  const GroundMask contact =
+      wantsMap(params, TextureMap::Mask) ? groundMask(source, request.ground, request.voxel_size) : GroundMask{};
 
   // No LOD's maps larger than the source can fill (texture_params.h).
   const int useful = usefulMapSize(source.rock.triangles.size() + source.colluvium.triangles.size());
