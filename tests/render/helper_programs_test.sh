@@ -20,6 +20,16 @@ status_of() {
   set -e
 }
 ok() { echo "ok: $*"; }
+# A bake with the fake FFmpeg in $dir/bin first on PATH, as case N: it must fail, its message
+# must match PATTERN, and no turntable.mp4 may be published. Says WHAT when it holds.
+movie_refused() {
+  local n=$1 pattern=$2 what=$3
+  status_of "$dir/log$n" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out$n"
+  [ "$status" -ne 0 ] || fail "$what: the bake exited 0"
+  grep -q "$pattern" "$dir/log$n" || fail "$what: the message does not say '$pattern': $(cat "$dir/log$n")"
+  [ -z "$(find "$dir/out$n" -name turntable.mp4 2>/dev/null)" ] || fail "$what: a turntable.mp4 was published"
+  ok "$what (exit $status)"
+}
 
 cat > "$dir/small.yaml" <<'YAML'
 rockbake: 1
@@ -51,11 +61,7 @@ printf 'this is not a movie' > "$last"
 exit 0
 SH
 chmod +x "$dir/bin/ffmpeg"
-status_of "$dir/log2" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out2"
-[ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote garbage exited 0"
-[ -z "$(find "$dir/out2" -name turntable.mp4 2>/dev/null)" ] || fail "garbage was published as turntable.mp4"
-grep -q "ftyp" "$dir/log2" || fail "the message does not say what was wrong: $(cat "$dir/log2")"
-ok "an FFmpeg writing garbage: no turntable.mp4 (exit $status)"
+movie_refused 2 "ftyp" "an FFmpeg writing garbage: no turntable.mp4"
 
 # An FFmpeg that hangs (and its child): killed after the stall limit, the bake fails.
 cat > "$dir/bin/ffmpeg" <<'SH'
@@ -108,11 +114,7 @@ done
 shift $n
 exec /usr/bin/ffmpeg "$@"
 SH
-status_of "$dir/log7" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out7"
-[ "$status" -ne 0 ] || fail "a bake whose FFmpeg dropped frames exited 0"
-grep -q "it holds 1 frames, not the 2 it was given" "$dir/log7" || fail "no frame count in the message: $(cat "$dir/log7")"
-[ -z "$(find "$dir/out7" -name turntable.mp4 2>/dev/null)" ] || fail "a short movie was published"
-ok "an FFmpeg dropping frames: refused by ffprobe's count (exit $status)"
+movie_refused 7 "it holds 1 frames, not the 2 it was given" "an FFmpeg dropping frames: refused by ffprobe's count"
 
 # An FFmpeg that writes an ftyp box and garbage after it, exit 0: ffprobe cannot read it, refused.
 cat > "$dir/bin/ffmpeg" <<'SH'
@@ -122,11 +124,7 @@ cat > /dev/null
 printf '\000\000\000\030ftypisom\000\000\002\000isomiso2 and then no movie at all' > "$last"
 exit 0
 SH
-status_of "$dir/log9" env PATH="$dir/bin:$PATH" "$rockbake" bake "$dir/small.yaml" -o "$dir/out9"
-[ "$status" -ne 0 ] || fail "a bake whose FFmpeg wrote an ftyp box and garbage exited 0"
-grep -q "ffprobe" "$dir/log9" || fail "the message does not say ffprobe refused it: $(cat "$dir/log9")"
-[ -z "$(find "$dir/out9" -name turntable.mp4 2>/dev/null)" ] || fail "garbage behind an ftyp box was published"
-ok "an FFmpeg writing an ftyp box and garbage: refused by ffprobe (exit $status)"
+movie_refused 9 "ffprobe" "an FFmpeg writing an ftyp box and garbage: refused by ffprobe"
 
 # A POV-Ray that fails to parse: its own words, as lines, without the banner it prints first.
 cat > "$dir/bin/povray" <<'SH'
