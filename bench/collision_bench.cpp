@@ -17,8 +17,8 @@
 #include "collision/collision_hulls.h"
 #include "collision/hull_coverage.h"
 #include "collision/point_hull.h"
-#include "core/stopwatch.h"
 #include "export/vdb_file.h"
+#include "platform/stopwatch.h"
 #include "preset/load_preset.h"
 #include "sim/grid_layout.h"
 

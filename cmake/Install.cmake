@@ -1,6 +1,6 @@
 # Where rockbake's files lie, in the build tree and installed (docs/architecture.md,
 # "Finding data"). The executable reads its data folder at <its folder>/../share/rockbake
-# (baker/core/data_dir.h), so both trees have that shape:
+# (baker/platform/data_dir.h), so both trees have that shape:
 #
 #   installed                              build tree
 #   <prefix>/bin/rockbake                  build/baker/rockbake (and build/tests/…, build/bench/…)

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "core/mesh_checks.h"
+#include "geometry/mesh_checks.h"
 #include "fuzz_support.h"
 #include "inputs/mesh_reader.h"
 

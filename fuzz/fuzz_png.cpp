@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "core/png_image.h"
+#include "platform/png_image.h"
 #include "fuzz_support.h"
 
 using namespace rockbake;

@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "collision/reduce_hull.h"
-#include "core/disjoint_set.h"
+#include "geometry/disjoint_set.h"
 
 namespace rockbake {
 namespace {

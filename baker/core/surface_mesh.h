@@ -2,7 +2,7 @@
 // World units, z up (the simulation's frame). Colours are linear RGB in [0, 1].
 //
 // Per-vertex arrays are listed once, in kVertexArrays below: every operation
-// that adds, drops, reorders or copies vertices (core/vertex_remap.h: remap,
+// that adds, drops, reorders or copies vertices (geometry/vertex_remap.h: remap,
 // compaction, welding, splitting) carries each array listed there, and each
 // must be empty or hold one value per position. Adding a per-vertex array to
 // SurfaceMesh means adding it to kVertexArrays too; the static_assert below

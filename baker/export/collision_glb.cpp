@@ -10,9 +10,9 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
-#include "core/atomic_file.h"
 #include "export/glb_file.h"
 #include "export/gltf_buffer.h"
+#include "platform/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -9,8 +9,8 @@
 
 #include <tiny_gltf.h>
 
-#include "core/atomic_file.h"
 #include "export/gltf_buffer.h"
+#include "platform/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
-#include "core/atomic_file.h"
-#include "core/colour.h"
+#include "platform/atomic_file.h"
+#include "platform/colour.h"
 
 namespace rockbake {
 

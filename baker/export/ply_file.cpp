@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
-#include "core/colour.h"
+#include "platform/atomic_file.h"
+#include "platform/colour.h"
 
 namespace rockbake {
 namespace {

@@ -18,9 +18,9 @@
 #include <string_view>
 #include <utility>
 
-#include "core/atomic_file.h"
-#include "core/openvdb_support.h"
 #include "mesh/extract_surfaces.h"
+#include "platform/atomic_file.h"
+#include "platform/openvdb_support.h"
 
 namespace rockbake {
 namespace {

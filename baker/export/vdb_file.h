@@ -9,7 +9,7 @@
 
 namespace rockbake {
 
-struct SmoothedSdf;  // core/openvdb_support.h
+struct SmoothedSdf;  // platform/openvdb_support.h
 
 // Writes, atomically, one .vdb holding
 //   BoolGrid  "rock"        active, true on Material::Rock voxels

@@ -21,7 +21,7 @@
 #include <string>
 #include <string_view>
 
-#include "http/local_server.h"
+#include "http/limits.h"
 
 namespace rockbake::http {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "core/input_file.h"
 #include "core/sha256.h"
 #include "http/json_body.h"
+#include "platform/input_file.h"
 
 namespace rockbake::http {
 

@@ -6,7 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
-#include "core/mesh_checks.h"
+#include "geometry/mesh_checks.h"
 #include "inputs/mesh_reader.h"
 
 namespace rockbake {

@@ -3,8 +3,8 @@
 // the simulation a resolved shape value that needs no further I/O.
 #pragma once
 
-#include "core/png_image.h"
 #include "core/surface_mesh.h"
+#include "platform/png_image.h"
 #include "preset/preset.h"
 
 namespace rockbake {

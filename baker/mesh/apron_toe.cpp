@@ -5,7 +5,7 @@
 #include <numbers>
 #include <vector>
 
-#include "core/disjoint_set.h"
+#include "geometry/disjoint_set.h"
 #include "mesh/ground_contact.h"
 #include "mesh/subdivide.h"
 

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/edge_table.h"
-#include "core/vertex_remap.h"
+#include "geometry/edge_table.h"
+#include "geometry/vertex_remap.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 

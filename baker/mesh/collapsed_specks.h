@@ -5,7 +5,7 @@
 // Takes a closed triangle mesh. Removes every connected piece (triangles
 // joined through shared vertices) of at most `max_triangles` triangles that
 // holds a defective triangle (mesh_defects.h's isDefective), with its
-// vertices and their values in every per-vertex array (core/vertex_remap.h);
+// vertices and their values in every per-vertex array (geometry/vertex_remap.h);
 // the rest is kept in order, and the mesh stays closed. Normals recomputed
 // when anything went. Returns the triangles removed. Deterministic. A
 // per-vertex array neither empty nor vertex-sized: std::logic_error, before

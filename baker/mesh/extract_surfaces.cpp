@@ -1,12 +1,12 @@
 #include "mesh/extract_surfaces.h"
 
-#include "core/mesh_checks.h"
-#include "core/triangle_geometry.h"
+#include "geometry/mesh_checks.h"
+#include "geometry/triangle_geometry.h"
 
-#include "core/openvdb_support.h"
-#include "core/side_by_side.h"
-#include "core/stopwatch.h"
 #include "mesh/subdivide.h"
+#include "platform/openvdb_support.h"
+#include "platform/side_by_side.h"
+#include "platform/stopwatch.h"
 
 #include <algorithm>
 #include <cmath>

@@ -30,7 +30,7 @@
 
 namespace rockbake {
 
-struct SmoothedSdf;  // core/openvdb_support.h
+struct SmoothedSdf;  // platform/openvdb_support.h
 
 struct ExtractParams {
   double smoothing = 1.0;  // 0..4 Gaussian passes (rounded to the nearest whole pass)

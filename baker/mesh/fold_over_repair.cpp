@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/edge_table.h"
-#include "core/triangle_geometry.h"
 #include "core/vec3.h"
-#include "core/vertex_faces.h"
-#include "core/vertex_remap.h"
+#include "geometry/edge_table.h"
+#include "geometry/triangle_geometry.h"
+#include "geometry/vertex_faces.h"
+#include "geometry/vertex_remap.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 

@@ -12,7 +12,7 @@
 // flips (eight passes each, triangles in index order) and collapses.
 //
 // Gives: the mesh still closed and 2-manifold; no vertex moved; the vertices
-// a collapse frees dropped (every per-vertex array with them, core/vertex_remap.h);
+// a collapse frees dropped (every per-vertex array with them, geometry/vertex_remap.h);
 // normals recomputed. Returns the defects left (0 when clean). Deterministic.
 // A per-vertex array neither empty nor vertex-sized: std::logic_error, before
 // anything changes.

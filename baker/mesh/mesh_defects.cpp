@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "core/disjoint_set.h"
-#include "core/mesh_checks.h"
-#include "core/triangle_geometry.h"
+#include "geometry/disjoint_set.h"
+#include "geometry/mesh_checks.h"
+#include "geometry/triangle_geometry.h"
 
 namespace rockbake {
 namespace {

@@ -14,9 +14,9 @@
 #include <span>
 #include <vector>
 
-#include "core/edge_table.h"
 #include "core/surface_mesh.h"
 #include "core/vec3.h"
+#include "geometry/edge_table.h"
 
 namespace rockbake {
 
@@ -38,7 +38,7 @@ MeshDefects checkMesh(const SurfaceMesh& mesh);
 
 // Triangle t faces against each of the three triangles across its edges
 // (negative dot product of the normals normal_of(face) gives). `twins` are an
-// EdgeTable's (core/edge_table.h), or a repair's copy kept through its flips:
+// EdgeTable's (geometry/edge_table.h), or a repair's copy kept through its flips:
 // a triangle with an edge that is not paired is not a fold-over.
 template <class NormalOf>
 bool foldsOver(std::span<const std::uint32_t> twins, std::uint32_t t, NormalOf&& normal_of) {
@@ -50,7 +50,7 @@ bool foldsOver(std::span<const std::uint32_t> twins, std::uint32_t t, NormalOf&&
   return true;
 }
 
-// Triangle t has zero area (core/triangle_geometry.h) or folds over.
+// Triangle t has zero area (geometry/triangle_geometry.h) or folds over.
 bool isDefective(const SurfaceMesh& mesh, std::span<const std::uint32_t> twins, std::uint32_t t);
 
 // The piece (triangles connected through shared vertices) of every vertex, as

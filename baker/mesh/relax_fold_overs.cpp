@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/edge_table.h"
 #include "core/vec3.h"
-#include "core/vertex_faces.h"
+#include "geometry/edge_table.h"
+#include "geometry/vertex_faces.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/subdivide.h"
 

@@ -14,12 +14,12 @@
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
-#include "core/side_by_side.h"
 #include "core/vec3.h"
 #include "mesh/collapsed_specks.h"
 #include "mesh/mesh_defects.h"
 #include "mesh/relax_fold_overs.h"
 #include "mesh/simplify_pass.h"
+#include "platform/side_by_side.h"
 
 namespace rockbake {
 namespace {

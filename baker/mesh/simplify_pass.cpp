@@ -6,9 +6,9 @@
 #include <meshoptimizer.h>
 #include <spdlog/spdlog.h>
 
-#include "core/disjoint_set.h"
-#include "core/edge_table.h"
-#include "core/vertex_remap.h"
+#include "geometry/disjoint_set.h"
+#include "geometry/edge_table.h"
+#include "geometry/vertex_remap.h"
 #include "mesh/back_to_back.h"
 #include "mesh/fold_over_repair.h"
 #include "mesh/mesh_defects.h"

@@ -6,9 +6,9 @@
 #include <span>
 #include <utility>
 
-#include "core/disjoint_set.h"
-#include "core/edge_table.h"
-#include "core/vertex_remap.h"
+#include "geometry/disjoint_set.h"
+#include "geometry/edge_table.h"
+#include "geometry/vertex_remap.h"
 #include "mesh/subdivide.h"
 
 namespace rockbake {

@@ -35,7 +35,7 @@ namespace rockbake {
 std::vector<unsigned int> splitPinches(std::vector<unsigned int>& indices, const std::vector<Vec3f>& positions);
 
 // On a closed triangle mesh: the copies are appended with every per-vertex
-// value of their originals (core/vertex_remap.h); normals recomputed. Returns
+// value of their originals (geometry/vertex_remap.h); normals recomputed. Returns
 // the vertices added.
 std::size_t splitNonManifold(SurfaceMesh& mesh);
 

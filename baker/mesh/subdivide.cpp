@@ -10,9 +10,9 @@
 #include <opensubdiv/far/topologyRefinerFactory.h>
 #include <opensubdiv/sdc/crease.h>
 
-#include "core/edge_table.h"
-#include "core/triangle_geometry.h"
 #include "core/vec3.h"
+#include "geometry/edge_table.h"
+#include "geometry/triangle_geometry.h"
 
 namespace rockbake {
 namespace {

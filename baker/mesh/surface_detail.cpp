@@ -8,12 +8,12 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/edge_table.h"
 #include "core/hash.h"
-#include "core/triangle_geometry.h"
+#include "core/perlin_noise.h"
 #include "core/vec3.h"
+#include "geometry/edge_table.h"
+#include "geometry/triangle_geometry.h"
 #include "mesh/subdivide.h"
-#include "sim/durability.h"
 
 namespace rockbake {
 namespace {

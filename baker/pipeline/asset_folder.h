@@ -25,7 +25,7 @@
 #include <optional>
 #include <string>
 
-#include "core/abnormal_exit.h"
+#include "platform/abnormal_exit.h"
 
 namespace rockbake {
 
@@ -78,7 +78,7 @@ class StagingFolder {
   // `lock`: the asset's lock when the caller holds it (a library job, which
   // keeps it for its failure record); nullptr: taken here. `out_of_memory`:
   // what to say should the process end without unwinding
-  // (core/abnormal_exit.h), which removes the folder then too.
+  // (platform/abnormal_exit.h), which removes the folder then too.
   StagingFolder(const std::filesystem::path& asset_dir, const std::string& out_of_memory, const AssetLock* lock);
   ~StagingFolder();
   StagingFolder(const StagingFolder&) = delete;

@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "core/colour.h"
-#include "core/triangle_geometry.h"
+#include "geometry/triangle_geometry.h"
 #include "mesh/extract_surfaces.h"
+#include "platform/atomic_file.h"
+#include "platform/colour.h"
 #include "texture/pack_charts.h"
 
 namespace rockbake {

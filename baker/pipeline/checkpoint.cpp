@@ -4,9 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/input_file.h"
+#include "platform/atomic_file.h"
+#include "platform/input_file.h"
 
 namespace rockbake {
 

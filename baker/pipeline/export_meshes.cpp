@@ -5,10 +5,10 @@
 #include <spdlog/spdlog.h>
 #include <tbb/task_group.h>
 
-#include "core/stopwatch.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
+#include "platform/stopwatch.h"
 
 namespace rockbake {
 

@@ -9,10 +9,10 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
-#include "core/png_image.h"
 #include "pipeline/asset_json.h"
 #include "pipeline/manifest.h"
+#include "platform/atomic_file.h"
+#include "platform/png_image.h"
 #include "render/contact_sheet.h"
 
 namespace rockbake {

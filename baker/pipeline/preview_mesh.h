@@ -23,7 +23,7 @@ AssetMeshes previewMeshes(const VoxelRock& rock, const Preset& preset, const Sim
 // at resolution 128, 1.6 M cells: 27 MB for the mesh, 15 MB for the VDB, so
 // 48 bytes a cell is generous), and 64 MiB for a malloc arena should one of the
 // threads need a new one. OpenVDB cannot recover from running out part-way (it
-// crashes), so the studio compares this with core/memory.h's headroom first.
+// crashes), so the studio compares this with platform/memory.h's headroom first.
 std::uint64_t estimatePreviewBytes(const GridLayout& layout);
 
 }  // namespace rockbake

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
-#include "core/memory.h"
+#include "platform/memory.h"
 #include "sim/grid_layout.h"
 
 namespace rockbake {

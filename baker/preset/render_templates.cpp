@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "core/data_dir.h"
 #include "core/did_you_mean.h"
+#include "platform/data_dir.h"
 #include "preset/yaml_text.h"
 
 namespace rockbake {

@@ -1,7 +1,7 @@
 // Render templates are chosen by name, never by path (docs/preset-reference.md): a preset's
 // `render.template` and `rockbake render --template` name a NAME.pov in the
 // templates folder. That folder is render_templates/ in rockbake's data folder
-// (core/data_dir.h), or the folder the environment variable ROCKBAKE_RENDER_TEMPLATES
+// (platform/data_dir.h), or the folder the environment variable ROCKBAKE_RENDER_TEMPLATES
 // names (a studio's own templates, configured explicitly by whoever runs rockbake).
 #pragma once
 
@@ -12,7 +12,7 @@
 
 namespace rockbake {
 
-// The templates folder, as above. Throws std::runtime_error (core/data_dir.h's message)
+// The templates folder, as above. Throws std::runtime_error (platform/data_dir.h's message)
 // when ROCKBAKE_RENDER_TEMPLATES is unset and the data folder has no render_templates/.
 std::filesystem::path renderTemplatesDir();
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "core/png_image.h"
+#include "platform/png_image.h"
 
 namespace rockbake {
 

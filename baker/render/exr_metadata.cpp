@@ -12,7 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
+#include "platform/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "core/png_image.h"
+#include "platform/png_image.h"
 
 namespace rockbake {
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/png_image.h"
+#include "platform/png_image.h"
 #include "preset/render_templates.h"
 
 namespace rockbake {

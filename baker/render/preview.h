@@ -1,11 +1,11 @@
 // Previews of renders (docs/rendering.md): an EXR (scene-linear) through the project's
-// OpenColorIO display/view transform (core/colour.h) to an 8-bit sRGB PNG.
+// OpenColorIO display/view transform (platform/colour.h) to an 8-bit sRGB PNG.
 #pragma once
 
 #include <filesystem>
 
-#include "core/colour.h"
-#include "core/png_image.h"
+#include "platform/colour.h"
+#include "platform/png_image.h"
 
 namespace rockbake {
 

@@ -9,9 +9,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/atomic_file.h"
 #include "core/hash.h"
 #include "core/vec3.h"
+#include "platform/atomic_file.h"
 #include "preset/render_templates.h"
 
 namespace rockbake {

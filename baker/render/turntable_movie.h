@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "core/colour.h"
+#include "platform/colour.h"
 
 namespace rockbake {
 

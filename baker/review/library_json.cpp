@@ -5,8 +5,8 @@
 #include <cerrno>
 
 #include "core/error.h"
-#include "core/input_file.h"
 #include "http/static_files.h"
+#include "platform/input_file.h"
 
 namespace rockbake {
 

@@ -1,17 +1,14 @@
 #include "review/review_server.h"
 
-#include <iostream>
 #include <regex>
 #include <stdexcept>
-
-#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "http/json_body.h"
 #include "http/local_server.h"
+#include "http/serve_until_stopped.h"
 #include "http/static_files.h"
 #include "review/library_view.h"
-#include "studio/stop_signals.h"
 
 namespace rockbake {
 namespace {
@@ -124,20 +121,10 @@ int runReview(const ReviewOptions& options) {
                      "bake into it first with `rockbake library LIBRARY.yaml -o " + options.library_dir.string() +
                          "` or `rockbake bake PRESET -o " + options.library_dir.string() + "`");
   libraryIndexAssets(options.library_dir);
-  StopSignals signals;  // first: every thread from here on inherits the blocked mask
+  http::StopSignals signals;  // first: every thread from here on inherits the blocked mask
   ReviewStore store(options.library_dir);
   http::LocalServer server(reviewRoutes(options, store));
-  try {
-    server.listen(options.host, options.port);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(std::string(e.what()) +
-                             " (in use, or not an address of this machine); try another --port or --port 0");
-  }
-  signals.whenReceived([&] { server.stop(); });
-  std::cout << "review: " << server.url() << std::endl;
-  spdlog::info("review: {}; Ctrl-C stops", options.library_dir.string());
-  server.serve();
-  spdlog::info("review: stopped");
+  http::serveUntilStopped(signals, server, {"review", options.host, options.port, options.library_dir.string()});
   return 0;
 }
 

@@ -18,7 +18,7 @@ struct ReviewOptions {
   std::filesystem::path library_dir;  // OUT, holding index.json
   std::string host = "127.0.0.1";     // only this machine unless told otherwise
   int port = 8632;                    // 0: any free port
-  std::filesystem::path web_root;     // the page: review/ in rockbake's data folder (core/data_dir.h)
+  std::filesystem::path web_root;     // the page: review/ in rockbake's data folder (platform/data_dir.h)
   std::filesystem::path three_root;   // the pinned three.js: studio/node_modules/three there
 };
 

@@ -11,7 +11,7 @@
 #include <ctime>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
+#include "platform/atomic_file.h"
 #include "review/library_json.h"
 
 namespace rockbake {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/perlin_noise.h"
 #include "core/voxel_rock.h"
 #include "preset/preset.h"
 
@@ -15,19 +16,6 @@ namespace rockbake {
 
 // Durability never falls below this, whatever the noise does.
 inline constexpr double kMinDurability = 0.01;
-
-// Ken Perlin's improved noise (2002) with a permutation shuffled from a seed.
-// Values lie in about [-1, 1]; 0 at integer lattice points.
-class PerlinNoise {
- public:
-  explicit PerlinNoise(std::uint64_t seed);
-  double operator()(double x, double y, double z) const;
-  // Octaves summed at doubling frequency and halving amplitude, normalised to [-1, 1].
-  double fractal(double x, double y, double z, int octaves) const;
-
- private:
-  std::array<std::uint8_t, 512> perm_;
-};
 
 // A graph ready to evaluate: the preset graph plus one noise field per segment.
 class DurabilityField {

@@ -1,6 +1,6 @@
 #include "sim/mesh_shape.h"
 
-#include "core/openvdb_support.h"
+#include "platform/openvdb_support.h"
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>

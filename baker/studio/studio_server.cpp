@@ -1,13 +1,12 @@
 #include "studio/studio_server.h"
 
 #include <algorithm>
-#include <iostream>
 #include <stdexcept>
 
-#include <spdlog/spdlog.h>
+#include <fmt/format.h>
 
-#include "core/memory.h"
-#include "studio/stop_signals.h"
+#include "http/serve_until_stopped.h"
+#include "platform/memory.h"
 #include "studio/studio_routes.h"
 #include "studio/studio_session.h"
 
@@ -36,27 +35,17 @@ http::Limits studioLimits() {
 
 int runStudio(const StudioOptions& options) {
   requirePage(options.web_root);
-  StopSignals signals;  // first: every thread from here on inherits the blocked mask
+  http::StopSignals signals;  // first: every thread from here on inherits the blocked mask
   // The checkpoints take at most an eighth of what this process may use, and 256 MiB.
   CheckpointBounds checkpoints;
   checkpoints.max_bytes = std::min<std::uint64_t>(checkpoints.max_bytes, memoryLimitBytes() / 8);
   StudioSession session(options.preset, options.resolution, checkpoints);
   Studio studio(session, options.out_dir);
   http::LocalServer server(studioRoutes(studio, options.web_root), studioLimits());
-  try {
-    server.listen(options.host, options.port);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(std::string(e.what()) +
-                             " (in use, or not an address of this machine); try another --port or --port 0");
-  }
-  signals.whenReceived([&] {
-    studio.bake.cancel();
-    server.stop();
-  });
-  std::cout << "studio: " << server.url() << std::endl;
-  spdlog::info("studio: {} at resolution {}; Ctrl-C stops", session.preset().name, options.resolution);
-  server.serve();
-  spdlog::info("studio: stopped");
+  http::serveUntilStopped(signals, server,
+                          {"studio", options.host, options.port,
+                           fmt::format("{} at resolution {}", session.preset().name, options.resolution)},
+                          [&] { studio.bake.cancel(); });
   return 0;
 }
 

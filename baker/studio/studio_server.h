@@ -2,7 +2,7 @@
 // layer (http/local_server.h, with its limits and who-may-call rules) by the
 // route table of studio/studio_routes.h, with a play loop
 // (studio/simulation_loop.h), a final bake (studio/final_bake.h) and Ctrl-C
-// (studio/stop_signals.h) beside it.
+// (http/serve_until_stopped.h) beside it.
 #pragma once
 
 #include <filesystem>
@@ -18,7 +18,7 @@ struct StudioOptions {
   int port = 8631;                        // 0: any free port
   int resolution = 64;                    // preview resolution (grid.resolution while in the studio)
   std::filesystem::path out_dir = "out";  // where bake final writes OUT/<name>/
-  std::filesystem::path web_root;         // the page: studio/ in rockbake's data folder (core/data_dir.h)
+  std::filesystem::path web_root;         // the page: studio/ in rockbake's data folder (platform/data_dir.h)
 };
 
 // The HTTP layer's limits as the studio sets them (docs/studio.md, "The server's promises").

@@ -9,13 +9,13 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/memory.h"
 #include "export/vdb_file.h"
 #include "pipeline/manifest.h"
 #include "pipeline/preview_mesh.h"
 #include "pipeline/read_inputs.h"
+#include "platform/atomic_file.h"
+#include "platform/memory.h"
 #include "preset/keyframe_edit.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"

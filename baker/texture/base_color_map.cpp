@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/colour.h"
+#include "platform/colour.h"
 #include "texture/bake_maps.h"
 #include "texture/texel_walk.h"
 

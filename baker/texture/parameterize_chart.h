@@ -16,8 +16,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/edge_table.h"
 #include "core/surface_mesh.h"
+#include "geometry/edge_table.h"
 
 namespace rockbake {
 
@@ -37,7 +37,7 @@ ChartUv parameterizeChart(const SurfaceMesh& mesh, const std::vector<std::uint32
 
 // Splits a chart of two or more triangles in two connected halves, grown from two triangles
 // far apart (breadth-first, then nearest by centroid distance). `edges`: the mesh's edge
-// table (core/edge_table.h). Deterministic.
+// table (geometry/edge_table.h). Deterministic.
 std::array<std::vector<std::uint32_t>, 2> splitChart(const SurfaceMesh& mesh, const EdgeTable& edges,
                                                      const std::vector<std::uint32_t>& triangles);
 

@@ -11,7 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/atomic_file.h"
+#include "platform/atomic_file.h"
 
 namespace rockbake::texture_detail {
 namespace {

@@ -5,7 +5,7 @@
 // and ended with a sync flush, the last one finished, and the bands' Adler-32 checksums
 // combined. libpng compresses on one thread only, and a 16-bit 2048² normal map takes it
 // most of a second. Sixteen bands at a time are deflated and written as one IDAT chunk (the
-// zlib stream runs on across chunks), into the file atomically (core/atomic_file.h), so only
+// zlib stream runs on across chunks), into the file atomically (platform/atomic_file.h), so only
 // their output is held at once. The bytes depend only on the pixels
 // (the bands are fixed, not the thread count). Any PNG reader reads the result.
 #pragma once

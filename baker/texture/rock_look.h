@@ -15,7 +15,7 @@
 #include <array>
 #include <cstdint>
 
-#include "sim/durability.h"
+#include "core/perlin_noise.h"
 
 namespace rockbake {
 

@@ -17,7 +17,7 @@
 #include <tbb/task_arena.h>
 #include <vector>
 
-#include "core/atomic_file.h"
+#include "platform/atomic_file.h"
 #include "texture/png_encoder.h"
 
 namespace rockbake {

@@ -1,5 +1,5 @@
 // Texture files (docs/textures.md), named in the Megascans manner and written atomically
-// (core/atomic_file.h): the bytes depend on the pixels alone (no time stamps).
+// (platform/atomic_file.h): the bytes depend on the pixels alone (no time stamps).
 //   <name>_BaseColor.png       8-bit sRGB RGB (an sRGB chunk says so)
 //   <name>_Normal_LOD<k>.png   16-bit RGB, linear
 //   <name>_ORM.png             8-bit RGB, linear (no colour chunk: data, not colour)

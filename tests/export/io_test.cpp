@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.h"
-#include "core/png_image.h"
+#include "platform/atomic_file.h"
+#include "platform/png_image.h"
 #include "export/vdb_file.h"
 #include "mesh/extract_surfaces.h"
 #include "test_support.h"

@@ -1,6 +1,6 @@
 // The mesh stage's repairs on their own (docs/meshes.md, The repairs): the
 // fold-over repair keeps the surface closed through many flips and collapses,
-// and the repairs carry every per-vertex array (core/vertex_remap.h) or refuse
+// and the repairs carry every per-vertex array (geometry/vertex_remap.h) or refuse
 // one of the wrong size before changing anything.
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/hash.h"
-#include "core/mesh_checks.h"
+#include "geometry/mesh_checks.h"
 #include "mesh/collapsed_specks.h"
 #include "mesh/fold_over_repair.h"
 #include "mesh/mesh_defects.h"

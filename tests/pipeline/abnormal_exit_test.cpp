@@ -1,4 +1,4 @@
-// core/abnormal_exit: when memory runs out where a library cannot unwind
+// platform/abnormal_exit: when memory runs out where a library cannot unwind
 // (OpenVDB's dilation throws again while it unwinds, which ends in
 // std::terminate), the process says the registered sentence, removes the
 // registered folders and exits 1 instead of aborting. Each case runs in a
@@ -14,8 +14,8 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
-#include "core/abnormal_exit.h"
-#include "core/openvdb_support.h"
+#include "platform/abnormal_exit.h"
+#include "platform/openvdb_support.h"
 #include "test_support.h"
 
 namespace rockbake {

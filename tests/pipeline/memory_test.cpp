@@ -1,4 +1,4 @@
-// What this process may use (core/memory.h), against what /proc and its limits say.
+// What this process may use (platform/memory.h), against what /proc and its limits say.
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/memory.h"
+#include "platform/memory.h"
 
 namespace rockbake {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "core/error.h"
-#include "core/mesh_checks.h"
+#include "geometry/mesh_checks.h"
 #include "inputs/mesh_reader.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "core/edge_table.h"
+#include "geometry/edge_table.h"
 #include "texture/dilate_texels.h"
 #include "texture/rasterize_uv.h"
 #include "texture/segment_charts.h"

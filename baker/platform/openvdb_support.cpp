@@ -1,4 +1,4 @@
-#include "core/openvdb_support.h"
+#include "platform/openvdb_support.h"
 
 #include <mutex>
 

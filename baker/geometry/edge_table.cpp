@@ -1,4 +1,4 @@
-#include "core/edge_table.h"
+#include "geometry/edge_table.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,6 +1,6 @@
 // Checks every stage applies to meshes (docs/meshes.md): closed and consistently
 // oriented, the enclosed volume, bounds. Plain functions over core/surface_mesh.h,
-// built on the mesh kernel (core/edge_table.h, core/triangle_geometry.h).
+// built on the mesh kernel (geometry/edge_table.h, geometry/triangle_geometry.h).
 #pragma once
 
 #include <array>

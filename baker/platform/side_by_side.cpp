@@ -1,4 +1,4 @@
-#include "core/side_by_side.h"
+#include "platform/side_by_side.h"
 
 #include <exception>
 #include <vector>

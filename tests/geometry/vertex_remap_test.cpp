@@ -1,4 +1,4 @@
-// The mesh kernel's vertex remap (core/vertex_remap.h; docs/mesh-kernel.md):
+// The mesh kernel's vertex remap (geometry/vertex_remap.h; docs/mesh-kernel.md):
 // every per-vertex array of SurfaceMesh (kVertexArrays) carried through
 // gathering, compaction, welding and splitting, and one contract for arrays of
 // the wrong size.
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/vertex_remap.h"
+#include "geometry/vertex_remap.h"
 #include "mesh_fixtures.h"
 
 namespace rockbake {

@@ -1,4 +1,4 @@
-#include "core/abnormal_exit.h"
+#include "platform/abnormal_exit.h"
 
 #include <sys/mman.h>
 #include <unistd.h>

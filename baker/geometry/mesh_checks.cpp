@@ -1,10 +1,10 @@
-#include "core/mesh_checks.h"
+#include "geometry/mesh_checks.h"
 
 #include <algorithm>
 #include <limits>
 
-#include "core/edge_table.h"
-#include "core/triangle_geometry.h"
+#include "geometry/edge_table.h"
+#include "geometry/triangle_geometry.h"
 
 namespace rockbake {
 namespace {

@@ -1,11 +1,11 @@
-// The mesh kernel's triangles around each vertex (core/vertex_faces.h; docs/mesh-kernel.md).
+// The mesh kernel's triangles around each vertex (geometry/vertex_faces.h; docs/mesh-kernel.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <stdexcept>
 #include <vector>
 
-#include "core/vertex_faces.h"
+#include "geometry/vertex_faces.h"
 #include "mesh_fixtures.h"
 
 namespace rockbake {

@@ -1,4 +1,4 @@
-// The mesh kernel's disjoint sets (core/disjoint_set.h; docs/mesh-kernel.md).
+// The mesh kernel's disjoint sets (geometry/disjoint_set.h; docs/mesh-kernel.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/disjoint_set.h"
+#include "geometry/disjoint_set.h"
 #include "core/hash.h"
 
 namespace rockbake {

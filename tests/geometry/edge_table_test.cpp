@@ -1,4 +1,4 @@
-// The mesh kernel's edge table (core/edge_table.h; docs/mesh-kernel.md) on
+// The mesh kernel's edge table (geometry/edge_table.h; docs/mesh-kernel.md) on
 // analytic meshes whose counts are known: V − E + F = 2 for a closed genus-0
 // surface.
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/disjoint_set.h"
-#include "core/edge_table.h"
-#include "core/mesh_checks.h"
+#include "geometry/disjoint_set.h"
+#include "geometry/edge_table.h"
+#include "geometry/mesh_checks.h"
 #include "mesh_fixtures.h"
 
 namespace rockbake {

@@ -1,4 +1,4 @@
-#include "core/vertex_remap.h"
+#include "geometry/vertex_remap.h"
 
 #include <algorithm>
 #include <numeric>

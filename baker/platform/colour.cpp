@@ -1,4 +1,4 @@
-#include "core/colour.h"
+#include "platform/colour.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 
@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/data_dir.h"
+#include "platform/data_dir.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 

@@ -1,4 +1,4 @@
-#include "core/memory.h"
+#include "platform/memory.h"
 
 #if defined(__GLIBC__)
 #include <malloc.h>

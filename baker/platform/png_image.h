@@ -31,7 +31,7 @@ struct RgbImage {
 // Any PNG as 8-bit RGB (alpha composited over black). Errors as readPngGray.
 RgbImage readPngRgb(const std::filesystem::path& file);
 
-// Writes `image` as an 8-bit RGB PNG, atomically (core/atomic_file.h). The bytes
+// Writes `image` as an 8-bit RGB PNG, atomically (platform/atomic_file.h). The bytes
 // depend only on the pixels: no time stamp or other varying chunk.
 void writePngRgb(const std::filesystem::path& file, const RgbImage& image);
 

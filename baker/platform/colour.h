@@ -12,7 +12,7 @@
 
 namespace rockbake {
 
-// render_templates/ocio/config.ocio in rockbake's data folder (core/data_dir.h); throws
+// render_templates/ocio/config.ocio in rockbake's data folder (platform/data_dir.h); throws
 // std::runtime_error, saying where it looked, when the data folder lacks it.
 std::filesystem::path defaultOcioConfig();
 

@@ -1,4 +1,4 @@
-#include "core/data_dir.h"
+#include "platform/data_dir.h"
 
 #include <cstdlib>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// The 8-bit sRGB code (core/colour.h): the table's answer is the transfer function's, rounded,
+// The 8-bit sRGB code (platform/colour.h): the table's answer is the transfer function's, rounded,
 // around every step where the code goes up and across the whole range. (Every float in
 // [0, 1.5] was compared once when the table was written: none differed.)
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/colour.h"
+#include "platform/colour.h"
 
 namespace rockbake {
 namespace {

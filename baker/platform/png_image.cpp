@@ -1,4 +1,4 @@
-#include "core/png_image.h"
+#include "platform/png_image.h"
 
 #include <png.h>
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <system_error>
 
-#include "core/atomic_file.h"
+#include "platform/atomic_file.h"
 
 namespace rockbake {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/vertex_faces.h"
+#include "geometry/vertex_faces.h"
 
 #include <stdexcept>
 #include <string>
