@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,19 +17,10 @@
 
 namespace rockbake::test {
 
-const char* const kSmallPreset = R"(rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 24}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-bubbles:
-  - up_to: 1.0
-    bubble: {sphere: {radius: 0.3}}
-    spheroidal: 1.0
-    cavernous: 0.2
-time: 0.5
-)";
+// tests/data/small.yaml, a C++ raw string written by tests/CMakeLists.txt into the build folder.
+const char* const kSmallPreset =
+#include "small_preset.inc"
+    ;
 
 Preset cubePreset(double cube, int resolution, double bubble_radius) {
   Preset p;
@@ -92,6 +84,16 @@ CommandResult runRockbakeUnder(const std::string& shell_prefix, const std::vecto
   const int status = ::pclose(pipe);
   result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
   return result;
+}
+
+std::unique_ptr<ChildProcess> startRockbake(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  ChildOptions options;
+  options.argv = {ROCKBAKE_EXECUTABLE};
+  options.argv.insert(options.argv.end(), args.begin(), args.end());
+  options.output_file = log;
+  options.own_group = false;
+  options.end_with_parent = true;
+  return std::make_unique<ChildProcess>(options);
 }
 
 std::filesystem::path sourceDir() {
@@ -221,6 +223,35 @@ std::vector<double> layerRadii(const VoxelRock& rock) {
   return radii;
 }
 
+std::size_t voxelComponents(const VoxelRock& rock, Material material) {
+  const GridLayout& g = rock.layout;
+  std::vector<char> seen(rock.material.size(), 0);
+  std::size_t components = 0;
+  std::vector<std::array<int, 3>> stack;
+  for (int z = 0; z < g.nz; ++z)
+    for (int y = 0; y < g.ny; ++y)
+      for (int x = 0; x < g.nx; ++x) {
+        const std::size_t i = g.index(x, y, z);
+        if (seen[i] || rock.material[i] != material) continue;
+        ++components;
+        seen[i] = 1;
+        stack.push_back({x, y, z});
+        while (!stack.empty()) {
+          const auto c = stack.back();
+          stack.pop_back();
+          for (int a = 0; a < 3; ++a)
+            for (int s : {-1, 1}) {
+              auto n = c;
+              n[a] += s;
+              if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= g.nx || n[1] >= g.ny || n[2] >= g.nz) continue;
+              const std::size_t j = g.index(n[0], n[1], n[2]);
+              if (!seen[j] && rock.material[j] == material) seen[j] = 1, stack.push_back(n);
+            }
+        }
+      }
+  return components;
+}
+
 double pearson(const std::vector<double>& a, const std::vector<double>& b) {
   double ma = 0, mb = 0;
   for (std::size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
@@ -232,6 +263,20 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
     sbb += (b[i] - mb) * (b[i] - mb);
   }
   return sab / std::sqrt(saa * sbb);
+}
+
+double spreadValue(std::uint64_t i) {
+  const std::uint64_t h = mix64(i);
+  return (double(h >> 11) / double(1ull << 53) - 0.5) * std::ldexp(1.0, int(h % 40) - 20);
+}
+Vec3d randomVec3d(std::uint64_t i) {
+  return {spreadValue(3 * i), spreadValue(3 * i + 1), spreadValue(3 * i + 2)};
+}
+Vec3f randomVec3f(std::uint64_t i) {
+  return toVec3f(randomVec3d(i));
+}
+bool sameBits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
 }  // namespace rockbake::test

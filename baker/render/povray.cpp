@@ -1,17 +1,17 @@
 #include "render/povray.h"
 
-#include <fcntl.h>
 #include <poll.h>
-#include <signal.h>
-#include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <thread>
+
+#include "platform/child_process.h"
 
 namespace rockbake {
 namespace {
@@ -74,66 +74,25 @@ namespace {
 
 PovrayResult runPovrayOnce(const PovrayJob& job) {
   const std::vector<std::string> args = povrayArguments(job);
-  std::vector<char*> argv;
-  for (const auto& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
   const std::string cwd = job.working_dir.string();
 
-  int out_pipe[2], err_pipe[2];
-  if (pipe2(out_pipe, O_CLOEXEC) != 0 || pipe2(err_pipe, O_CLOEXEC) != 0)
-    throw PovrayError(std::string("cannot run POV-Ray: pipe failed: ") + std::strerror(errno));
-
   const auto start = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid < 0) {
-    const int e = errno;
-    close(out_pipe[0]), close(out_pipe[1]), close(err_pipe[0]), close(err_pipe[1]);
-    throw PovrayError(std::string("cannot run POV-Ray: fork failed: ") + std::strerror(e));
-  }
-  if (pid == 0) {
-    // Child: only async-signal-safe calls until exec.
-    setpgid(0, 0);
-    const int devnull = open("/dev/null", O_RDONLY);
-    if (devnull >= 0) dup2(devnull, 0);
-    dup2(out_pipe[1], 1);
-    dup2(out_pipe[1], 2);
-    int e = 0;
-    if (chdir(cwd.c_str()) != 0) {
-      e = errno;
-      const char tag = 'C';
-      (void)!write(err_pipe[1], &tag, 1);
-    } else {
-      execvp(argv[0], argv.data());
-      e = errno;
-      const char tag = 'E';
-      (void)!write(err_pipe[1], &tag, 1);
-    }
-    (void)!write(err_pipe[1], &e, sizeof e);
-    _exit(127);
-  }
-  close(out_pipe[1]);
-  close(err_pipe[1]);
-
-  // Exec failure report: empty read (EOF) means exec succeeded.
-  char tag = 0;
-  int child_errno = 0;
-  bool exec_failed = false;
-  if (read(err_pipe[0], &tag, 1) == 1) {
-    exec_failed = true;
-    (void)!read(err_pipe[0], &child_errno, sizeof child_errno);
-  }
-  close(err_pipe[0]);
-  if (exec_failed) {
-    close(out_pipe[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (tag == 'C')
-      throw PovrayError("cannot run POV-Ray: cannot enter the asset folder " + cwd + ": " + std::strerror(child_errno));
-    if (child_errno == ENOENT)
+  std::optional<ChildProcess> child;
+  try {
+    ChildOptions options;
+    options.argv = args;
+    options.working_dir = job.working_dir;
+    child.emplace(options);
+  } catch (const ChildStartError& e) {
+    if (e.step == ChildStartError::Step::working_dir)
+      throw PovrayError("cannot run POV-Ray: cannot enter the asset folder " + cwd + ": " + std::strerror(e.error));
+    if (e.step == ChildStartError::Step::exec && e.error == ENOENT)
       throw PovrayError("POV-Ray ('" + job.executable +
                         "') was not found on PATH; rendering needs it: install it with: apt-get install povray "
                         "(Debian package 'povray'), or bake with --no-render");
-    throw PovrayError("cannot run POV-Ray ('" + job.executable + "'): " + std::strerror(child_errno));
+    if (e.step == ChildStartError::Step::exec)
+      throw PovrayError("cannot run POV-Ray ('" + job.executable + "'): " + std::strerror(e.error));
+    throw PovrayError(std::string("cannot run POV-Ray: ") + e.what());
   }
 
   std::string messages;
@@ -152,24 +111,19 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
       cancelled = true;
       break;
     }
-    pollfd p{out_pipe[0], POLLIN, 0};
+    pollfd p{child->output(), POLLIN, 0};
     const int r = poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) continue;
-    const ssize_t n = read(out_pipe[0], buf, sizeof buf);
+    const ssize_t n = read(child->output(), buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // EOF: POV-Ray closed its output (it is exiting)
     messages.append(buf, std::size_t(n));
     if (messages.size() > 2 * kKeep) messages.erase(0, messages.size() - kKeep);
   }
-  if (timed_out || cancelled) {
-    kill(-pid, SIGKILL);
-    kill(pid, SIGKILL);
-  }
-  close(out_pipe[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  if (timed_out || cancelled) child->killGroup();
+  child->closeOutput();
+  const int status = child->wait();
   PovrayResult result;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.messages = messages;

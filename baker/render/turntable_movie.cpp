@@ -1,10 +1,7 @@
 #include "render/turntable_movie.h"
 
-#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
-#include <sys/prctl.h>
-#include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,11 +11,13 @@
 #include <condition_variable>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <system_error>
 #include <thread>
 
+#include "platform/child_process.h"
 #include "render/preview.h"
 
 namespace rockbake {
@@ -51,58 +50,22 @@ class ProgramNotFound : public MovieError {
   using MovieError::MovieError;
 };
 
-// FFmpeg as a child: we write its standard input to `in` and read its output
-// and errors from `out`. A close-on-exec pipe carries errno back if exec fails.
-struct Child {
-  pid_t pid = -1;
-  int in = -1, out = -1;
-};
-
-Child startFfmpeg(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const auto& s : args) argv.push_back(const_cast<char*>(s.c_str()));
-  argv.push_back(nullptr);
-  int in_pipe[2], out_pipe[2], report[2];
-  if (pipe2(in_pipe, O_CLOEXEC) != 0 || pipe2(out_pipe, O_CLOEXEC) != 0 || pipe2(report, O_CLOEXEC) != 0)
-    throw MovieError(std::string("cannot run FFmpeg: pipe failed: ") + std::strerror(errno));
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) {
-    const int e = errno;
-    for (int fd : {in_pipe[0], in_pipe[1], out_pipe[0], out_pipe[1], report[0], report[1]}) close(fd);
-    throw MovieError(std::string("cannot run FFmpeg: fork failed: ") + std::strerror(e));
-  }
-  if (pid == 0) {  // only async-signal-safe calls until exec
-    setpgid(0, 0);
-    // Its own process group keeps a Ctrl-C for the baker alone; the death
-    // signal ends FFmpeg with the baker, killed or not, so none is left running.
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(127);
-    dup2(in_pipe[0], 0);
-    dup2(out_pipe[1], 1);
-    dup2(out_pipe[1], 2);
-    execvp(argv[0], argv.data());
-    const int e = errno;
-    (void)!write(report[1], &e, sizeof e);
-    _exit(127);
-  }
-  close(in_pipe[0]);
-  close(out_pipe[1]);
-  close(report[1]);
-  int child_errno = 0;
-  const bool exec_failed = read(report[0], &child_errno, sizeof child_errno) == sizeof child_errno;
-  close(report[0]);
-  if (exec_failed) {
-    close(in_pipe[1]);
-    close(out_pipe[0]);
-    waitpid(pid, nullptr, 0);
-    if (child_errno == ENOENT)
+// FFmpeg (or ffprobe) as a child: we write its standard input and read its output and errors.
+std::unique_ptr<ChildProcess> startFfmpeg(const std::vector<std::string>& args) {
+  try {
+    ChildOptions options;
+    options.argv = args;
+    options.input_pipe = true;
+    return std::make_unique<ChildProcess>(options);
+  } catch (const ChildStartError& e) {
+    if (e.step == ChildStartError::Step::exec && e.error == ENOENT)
       throw ProgramNotFound("FFmpeg ('" + args[0] +
                             "') was not found on PATH; turntable movies need it: install it with: apt-get install "
                             "ffmpeg (Debian package 'ffmpeg'), or set render.turntable.frames: 0");
-    throw MovieError("cannot run FFmpeg ('" + args[0] + "'): " + std::strerror(child_errno));
+    if (e.step == ChildStartError::Step::exec)
+      throw MovieError("cannot run FFmpeg ('" + args[0] + "'): " + std::strerror(e.error));
+    throw MovieError(std::string("cannot run FFmpeg: ") + e.what());
   }
-  return {pid, in_pipe[1], out_pipe[0]};
 }
 
 // Writes all of `bytes`; false when FFmpeg closed its input (it failed).
@@ -201,33 +164,32 @@ std::string ffprobeFor(const std::string& ffmpeg) {
 // FFmpeg: killed with its group when it says nothing for kFfmpegStallSeconds or `cancel` is set.
 std::string frameCountProblem(const std::string& ffprobe, const std::filesystem::path& file, std::size_t frames,
                               const std::atomic<bool>* cancel) {
-  Child child;
+  std::unique_ptr<ChildProcess> child;
   try {
     child = startFfmpeg({ffprobe, "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
                          "stream=nb_read_frames", "-of", "csv=p=0", file.string()});
   } catch (const ProgramNotFound&) {
     return "";
   }
-  close(child.in);
+  child->closeInput();
   std::string said;
   int status = 0;
   bool stalled = false, cancelled = false;
   {
-    Watchdog watchdog(child.pid, cancel);
+    Watchdog watchdog(child->pid(), cancel);
     char buf[1024];
     while (true) {
-      const ssize_t n = read(child.out, buf, sizeof buf);
+      const ssize_t n = read(child->output(), buf, sizeof buf);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
       if (said.size() < 4096) said.append(buf, std::size_t(n));
       watchdog.progress();
     }
     // Reaped under the watchdog too: an ffprobe that closed its output and hangs is killed.
-    while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    status = child->wait();
     stalled = watchdog.stalled(), cancelled = watchdog.cancelled();
   }
-  close(child.out);
+  child->closeOutput();
   if (cancelled) return "ffprobe, counting its frames, was cancelled and killed";
   if (stalled)
     return "ffprobe, counting its frames, made no progress for " + std::to_string(kFfmpegStallSeconds) + " s";
@@ -274,14 +236,14 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
   const auto [width, height] = movieFrameSize(first.width, first.height);
   const std::filesystem::path tmp = job.target.parent_path() / ("." + job.target.stem().string() + ".ffmpeg.mp4");
   const std::vector<std::string> args = ffmpegArguments(job, width, height, tmp);
-  Child child = startFfmpeg(args);
-  std::optional<Watchdog> watchdog(std::in_place, child.pid, job.cancel);
+  const std::unique_ptr<ChildProcess> child = startFfmpeg(args);
+  std::optional<Watchdog> watchdog(std::in_place, child->pid(), job.cancel);
 
   std::string messages;
   std::thread reader([&] {
     char buf[4096];
     while (true) {
-      const ssize_t n = read(child.out, buf, sizeof buf);
+      const ssize_t n = read(child->output(), buf, sizeof buf);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
       messages.append(buf, std::size_t(n));
@@ -300,24 +262,22 @@ void writeTurntableMovie(const TurntableMovieJob& job) {
       if (frame.width != first.width || frame.height != first.height)
         failure = job.frames[i].string() + " is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
                   ", the first frame " + std::to_string(first.width) + "x" + std::to_string(first.height);
-      else if (!writeAll(child.in, paddedRgb(frame, width, height)))
+      else if (!writeAll(child->input(), paddedRgb(frame, width, height)))
         break;  // FFmpeg stopped reading (or was killed): its status and messages say why
       watchdog->progress();
     } catch (const std::exception& e) {
       failure = e.what();
     }
   }
-  if (cancelled || !failure.empty()) kill(-child.pid, SIGKILL);
-  close(child.in);
-  int status = 0;
-  while (waitpid(child.pid, &status, 0) < 0 && errno == EINTR) {
-  }
+  if (cancelled || !failure.empty()) child->killGroup();
+  child->closeInput();
+  const int status = child->wait();
   const bool stalled = watchdog->stalled();
   cancelled = cancelled || watchdog->cancelled();
   watchdog.reset();
-  kill(-child.pid, SIGKILL);  // anything FFmpeg started that outlived it
+  child->killGroup();  // anything FFmpeg started that outlived it
   reader.join();
-  close(child.out);
+  child->closeOutput();
 
   std::error_code ec;
   const std::string where = "FFmpeg (writing " + job.target.string() + ")";

@@ -6,12 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
-#include <poll.h>
 #include <signal.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -35,6 +32,7 @@ using nlohmann::json;
 using test::kSmallPreset;
 using test::readBytes;
 using test::runRockbake;
+using test::startRockbake;
 using test::TempDir;
 using test::writeText;
 
@@ -198,39 +196,24 @@ TEST(AssetFolder, OutGivenAsAFileIsExit2) {
 
 class Studio {
  public:
-  Studio(const fs::path& preset, const fs::path& out) {
-    int pipe_fds[2];
-    if (::pipe(pipe_fds) != 0) return;
-    pid_ = ::fork();
-    if (pid_ == 0) {
-      ::dup2(pipe_fds[1], 1);
-      ::close(pipe_fds[0]);
-      const std::string executable = ROCKBAKE_EXECUTABLE;
-      ::execl(executable.c_str(), executable.c_str(), "studio", preset.c_str(), "--port", "0", "--resolution", "16",
-              "-o", out.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    ::close(pipe_fds[1]);
-    std::string said;
+  Studio(const fs::path& preset, const fs::path& out) : log_(out.parent_path() / "studio.log") {
+    child_ = test::startRockbake({"studio", preset.string(), "--port", "0", "--resolution", "16", "-o", out.string()},
+                                 log_);
     const std::regex listening(R"(studio: http://127\.0\.0\.1:(\d+)/)");
     std::smatch match;
-    for (pollfd p{pipe_fds[0], POLLIN, 0}; ::poll(&p, 1, 60000) > 0;) {
-      char buffer[256];
-      const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
-      if (n <= 0) break;
-      said.append(buffer, std::size_t(n));
+    // The address it listens on, printed once it does (or never, when it failed to start).
+    for (int i = 0; i < 6000 && !child_->poll(); ++i) {
+      const std::string said = test::readBytes(log_);
       if (std::regex_search(said, match, listening)) {
         port_ = std::stoi(match[1]);
         break;
       }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    ::close(pipe_fds[0]);
   }
   ~Studio() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGINT);
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
+    ::kill(child_->pid(), SIGINT);
+    child_->wait();
   }
   int port() const { return port_; }
 
@@ -260,7 +243,8 @@ class Studio {
   }
 
  private:
-  pid_t pid_ = -1;
+  fs::path log_;
+  std::unique_ptr<ChildProcess> child_;
   int port_ = 0;
 };
 
@@ -370,41 +354,17 @@ TEST(AssetFolder, AKillAtEveryPointLeavesThePreviousAssetOrTheNew) {
 
 // ---- two runs into one OUT ----
 
-// rockbake with its output to `log`, not waited for.
-pid_t spawnRockbake(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all = {ROCKBAKE_EXECUTABLE};
-  all.insert(all.end(), args.begin(), args.end());
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) ::dup2(fd, 1), ::dup2(fd, 2);
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
 // True once OUT holds the staging folder of a bake of `name` (it is baking it, under its lock).
-bool waitForStaging(const fs::path& out, const std::string& name, pid_t pid) {
+bool waitForStaging(const fs::path& out, const std::string& name, ChildProcess& child) {
   for (int i = 0; i < 12000; ++i) {
     std::error_code ec;
     if (fs::is_directory(out, ec))
       for (const auto& entry : fs::directory_iterator(out, ec))
         if (entry.path().filename().string().rfind("." + name + ".baking-", 0) == 0) return true;
-    int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+    if (child.poll()) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return false;
-}
-
-int waitFor(pid_t pid) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // Job x bakes quickly, job y slowly (about 2 s).
@@ -423,14 +383,14 @@ TEST(AssetFolder, TwoLibraryRunsIntoOneOutDoNotCorruptEachOther) {
   TempDir dir;
   const fs::path lib = writeTwoJobLibrary(dir);
   const fs::path out = dir.path() / "out";
-  const pid_t first = spawnRockbake({"library", lib.string(), "-o", out.string(), "--no-mesh"}, dir.path() / "a.log");
-  ASSERT_TRUE(waitForStaging(out, "y-slow", first)) << readBytes(dir.path() / "a.log");
+  const auto first = startRockbake({"library", lib.string(), "-o", out.string(), "--no-mesh"}, dir.path() / "a.log");
+  ASSERT_TRUE(waitForStaging(out, "y-slow", *first)) << readBytes(dir.path() / "a.log");
   const auto second = runRockbake({"library", lib.string(), "-o", out.string(), "--no-mesh", "--set", "time=-1"});
   EXPECT_EQ(second.exit_status, 2) << second.output;
-  EXPECT_NE(second.output.find("y-slow: is being written by pid " + std::to_string(first) + " on host "),
+  EXPECT_NE(second.output.find("y-slow: is being written by pid " + std::to_string(first->pid()) + " on host "),
             std::string::npos)
       << second.output;
-  EXPECT_EQ(waitFor(first), 0) << readBytes(dir.path() / "a.log");
+  EXPECT_EQ(exitCode(first->wait()), 0) << readBytes(dir.path() / "a.log");
   for (const char* job : {"x", "y-slow"}) {
     EXPECT_FALSE(completeAssetHash(out / job).empty()) << job;
     EXPECT_FALSE(fs::exists(out / job / kFailureFile)) << job;
@@ -450,11 +410,11 @@ TEST(AssetFolder, AJobWhoseAssetIsBeingWrittenElsewhereFailsAndWritesNothing) {
   const fs::path out = dir.path() / "out";
   const std::vector<std::string> args = {"library", (dir.path() / "lib.yaml").string(), "-o", out.string(),
                                          "--no-mesh"};
-  const pid_t run = spawnRockbake(args, dir.path() / "run.log");
-  ASSERT_TRUE(waitForStaging(out, "first-slow", run)) << readBytes(dir.path() / "run.log");
+  const auto run = startRockbake(args, dir.path() / "run.log");
+  ASSERT_TRUE(waitForStaging(out, "first-slow", *run)) << readBytes(dir.path() / "run.log");
   {
     const AssetLock elsewhere(out / "last");
-    EXPECT_EQ(waitFor(run), 1);
+    EXPECT_EQ(exitCode(run->wait()), 1);
     const std::string log = readBytes(dir.path() / "run.log");
     EXPECT_NE(log.find("last: is being written by pid " + std::to_string(::getpid())), std::string::npos) << log;
     EXPECT_FALSE(fs::exists(out / "last")) << "nothing written into an asset another process holds";

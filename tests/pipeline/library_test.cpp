@@ -2,7 +2,6 @@
 // interruption, shards, failures, the index and the contact sheet.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -16,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/png_image.h"
+#include "platform/png_image.h"
 #include "core/sha256.h"
 #include "pipeline/library_index.h"
 #include "pipeline/manifest.h"
@@ -32,6 +31,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using test::readBytes;
 using test::runRockbake;
+using test::startRockbake;
 using test::TempDir;
 using test::writeText;
 
@@ -115,32 +115,14 @@ std::int64_t mtimeNs(const fs::path& file) {
   return std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
 }
 
-// Starts rockbake with `args` in the background, its output to `log`.
-pid_t spawnRockbake(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all = {ROCKBAKE_EXECUTABLE};
-  all.insert(all.end(), args.begin(), args.end());
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) ::dup2(fd, 1), ::dup2(fd, 2);
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
 // Waits until some folder of `out` holds a manifest (or the process ends); true if one does.
-bool waitForFirstManifest(const fs::path& out, pid_t pid) {
+bool waitForFirstManifest(const fs::path& out, ChildProcess& child) {
   for (int i = 0; i < 6000; ++i) {
     std::error_code ec;
     if (fs::is_directory(out, ec))
       for (const auto& entry : fs::directory_iterator(out, ec))
         if (fs::is_regular_file(entry.path() / kManifestFile)) return true;
-    int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) {
+    if (child.poll()) {
       ADD_FAILURE() << "rockbake ended before any manifest appeared";
       return false;
     }
@@ -455,12 +437,11 @@ TEST(Library, KilledRunResumesToTheSameOutputs) {
   ASSERT_EQ(runRockbake(args).exit_status, 0);
 
   args[3] = out.string();
-  const pid_t pid = spawnRockbake(args, dir.path() / "killed.log");
-  ASSERT_GT(pid, 0);
-  const bool started = waitForFirstManifest(out, pid);
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  const auto child = startRockbake(args, dir.path() / "killed.log");
+  ASSERT_GT(child->pid(), 0);
+  const bool started = waitForFirstManifest(out, *child);
+  ::kill(child->pid(), SIGKILL);
+  child->wait();
   ASSERT_TRUE(started);
   // Whatever the kill left: no folder has a manifest that promises more than is there.
   expectManifestsTrue(out);
@@ -484,14 +465,13 @@ TEST(Library, InterruptStopsCleanlyWithStatus130) {
   TempDir dir;
   const fs::path lib = writeLibrary(dir, "- preset: small.yaml\n  seeds: {from: 1, count: 12}\n");
   const fs::path out = dir.path() / "out";
-  const pid_t pid = spawnRockbake(
+  const auto child = startRockbake(
       {"library", lib.string(), "-o", out.string(), "--no-mesh", "--set", "grid.resolution=40", "--jobs", "1"},
       dir.path() / "interrupted.log");
-  ASSERT_GT(pid, 0);
-  ASSERT_TRUE(waitForFirstManifest(out, pid));
-  ::kill(pid, SIGINT);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  ASSERT_GT(child->pid(), 0);
+  ASSERT_TRUE(waitForFirstManifest(out, *child));
+  ::kill(child->pid(), SIGINT);
+  const int status = child->wait();
   ASSERT_TRUE(WIFEXITED(status)) << readBytes(dir.path() / "interrupted.log");
   EXPECT_EQ(WEXITSTATUS(status), 130) << readBytes(dir.path() / "interrupted.log");
   // The index lists what finished; the rest has no manifest.
@@ -510,10 +490,11 @@ TEST(Library, InterruptKillsARunningRender) {
   const fs::path lib = writeLibrary(dir, "- preset: small.yaml\n  seeds: [1]\n");
   const fs::path out = dir.path() / "out";
   // A render slow enough (seconds) to be interrupted in the middle.
-  const pid_t pid = spawnRockbake({"library", lib.string(), "-o", out.string(), "--set", "render.width=1600", "--set",
-                                   "render.height=1200", "--set", "render.quality=9", "--set", "render.antialias=0.02"},
-                                  dir.path() / "interrupted.log");
-  ASSERT_GT(pid, 0);
+  const auto child =
+      startRockbake({"library", lib.string(), "-o", out.string(), "--set", "render.width=1600", "--set",
+                     "render.height=1200", "--set", "render.quality=9", "--set", "render.antialias=0.02"},
+                    dir.path() / "interrupted.log");
+  ASSERT_GT(child->pid(), 0);
   // scene.pov is written just before POV-Ray starts.
   bool rendering = false;
   for (int i = 0; i < 6000 && !rendering; ++i) {
@@ -526,9 +507,8 @@ TEST(Library, InterruptKillsARunningRender) {
   }
   ASSERT_TRUE(rendering) << readBytes(dir.path() / "interrupted.log");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  ::kill(pid, SIGINT);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  ::kill(child->pid(), SIGINT);
+  const int status = child->wait();
   const std::string log = readBytes(dir.path() / "interrupted.log");
   ASSERT_TRUE(WIFEXITED(status)) << log;
   EXPECT_EQ(WEXITSTATUS(status), 130) << log;
