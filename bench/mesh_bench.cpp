@@ -22,13 +22,12 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/colour.h"
-#include "core/edge_table.h"
-#include "core/mesh_checks.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
 #include "export/vdb_file.h"
+#include "geometry/edge_table.h"
+#include "geometry/mesh_checks.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/fold_over_repair.h"
@@ -37,6 +36,7 @@
 #include "mesh/subdivide.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/export_meshes.h"
+#include "platform/colour.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 
@@ -92,7 +92,7 @@ const Asset& asset() {
 
 AssetMeshes sampled() {
   const Asset& a = asset();
-  const std::vector<float> exposure = exposureField(a.rock, a.preset);
+  const std::vector<float> exposure = exposureField(a.rock, a.preset.bubbles);
   return sampleAttributes(extractSurfaces(a.rock, {a.preset.mesh.smoothing}), {&a.rock, &exposure});
 }
 
@@ -123,7 +123,7 @@ void BM_MeshAttributes(benchmark::State& state) {
   const Asset& a = asset();
   const AssetMeshes base = extractSurfaces(a.rock, {a.preset.mesh.smoothing});
   for (auto _ : state) {
-    const std::vector<float> exposure = exposureField(a.rock, a.preset);
+    const std::vector<float> exposure = exposureField(a.rock, a.preset.bubbles);
     benchmark::DoNotOptimize(sampleAttributes(base, {&a.rock, &exposure}));
   }
 }

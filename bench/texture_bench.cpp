@@ -38,11 +38,11 @@
 #include <string>
 
 #include "core/hash.h"
-#include "core/memory.h"
-#include "core/png_image.h"
-#include "core/stopwatch.h"
 #include "inputs/resolve_shape.h"
 #include "pipeline/bake_meshes.h"
+#include "platform/memory.h"
+#include "platform/png_image.h"
+#include "platform/stopwatch.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -451,7 +451,7 @@ int main(int argc, char** argv) {
       for (const TextureFile& f : sets.back().files) bytes += std::filesystem::file_size(request.folder / f.file);
       std::printf("%d thread(s): textures %.2f s in all (%.2f s of CPU), %zu files, %.1f MB, %zu texels missed\n",
                   threads, total, cpu, sets.back().files.size(), 1e-6 * double(bytes), sets.back().missed);
-      for (const TextureSet::Step& step : sets.back().steps)
+      for (const PhaseTime& step : sets.back().steps.all())
         std::printf("  %-18s %7.3f s (CPU %.3f s)\n", step.name.c_str(), step.seconds, step.cpu_seconds);
     }
     if (sets.size() == 2) {

@@ -205,7 +205,8 @@ void BM_CycleWithDebris(benchmark::State& state) {
   double settle_work = 0, largest_tiles = 0, two_workers = 0;
   for (auto _ : state) {
     const CycleStats c = sim.step();
-    curvature += c.curvature_seconds, colluvium += c.colluvium_seconds, rockfall += c.rockfall_seconds;
+    curvature += c.times.seconds("curvature").value_or(0.0), colluvium += c.times.seconds("colluvium").value_or(0.0),
+        rockfall += c.times.seconds("rockfall").value_or(0.0);
     settle_work += double(c.settle_work), largest_tiles += double(c.settle_largest_tiles);
     two_workers += double(c.settle_two_workers);
   }

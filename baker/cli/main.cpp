@@ -23,10 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/library_progress.h"
-#include "core/abnormal_exit.h"
-#include "core/data_dir.h"
 #include "core/error.h"
-#include "core/memory.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
@@ -37,6 +34,9 @@
 #include "pipeline/read_inputs.h"
 #include "pipeline/rerender_asset.h"
 #include "pipeline/resume_plan.h"
+#include "platform/abnormal_exit.h"
+#include "platform/data_dir.h"
+#include "platform/memory.h"
 #include "preset/library.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
@@ -105,6 +105,8 @@ struct StageSwitches {
   bool no_mesh = false;
   bool no_render = false;
   bool no_textures = false;
+
+  rockbake::BakeStages stages() const { return {!no_mesh, !no_textures, !no_render}; }
 };
 
 void addStageSwitches(CLI::App* command, StageSwitches& switches) {
@@ -168,7 +170,7 @@ LoadedPresets loadPresetsToBake(const BakeArgs& args, const rockbake::PresetOver
                                    "'" + presets[i].name + "' is also the name of " + args.presets[j],
                                    "assets are written to OUT/<name>; give each preset its own name");
   // The render template of every preset exists (the default one too).
-  if (!args.switches.no_mesh && !args.switches.no_render)
+  if (args.switches.stages().applied().render)
     for (const auto& preset : presets)
       if (const auto problem =
               rockbake::renderTemplateProblem(preset.render.template_name, rockbake::renderTemplatesDir()))
@@ -185,9 +187,7 @@ int runBake(const BakeArgs& args) {
     const rockbake::Preset& preset = loaded.presets[i];
     rockbake::BakeOptions options;
     options.out_dir = args.out_dir;
-    options.mesh = !args.switches.no_mesh;
-    options.render = !args.switches.no_render;
-    options.textures = !args.switches.no_textures;
+    options.stages = args.switches.stages();
     options.load_seconds = loaded.load_seconds[i];
     options.render_threads = args.threads;
     options.manifest.overrides = overrides;
@@ -239,9 +239,7 @@ int runResume(const ResumeArgs& args) {
   rockbake::ResumePlan plan = rockbake::planResume(checkpoint, args.sets);
   rockbake::BakeOptions options;
   options.out_dir = args.out_dir;
-  options.mesh = !args.switches.no_mesh;
-  options.render = !args.switches.no_render;
-  options.textures = !args.switches.no_textures;
+  options.stages = args.switches.stages();
   options.render_threads = args.threads;
   options.manifest.overrides = plan.overrides;
   options.checkpoint_every = args.checkpoint_every;
@@ -584,9 +582,7 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   options.threads = args.threads;
   options.sets = args.sets;
   options.resolution = args.resolution;
-  options.mesh = !args.switches.no_mesh;
-  options.render = !args.switches.no_render && !args.switches.no_mesh;
-  options.textures = !args.switches.no_textures;
+  options.stages = args.switches.stages();
   options.cancel = &library_interrupted;
   rockbake::LibraryProgress progress(jobs.size(), std::max(1, args.jobs), ::isatty(STDERR_FILENO) == 1,
                                      &library_interrupted);

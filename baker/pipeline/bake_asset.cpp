@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -11,10 +10,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/side_by_side.h"
-#include "core/stopwatch.h"
 #include "export/vdb_file.h"
 #include "mesh/extract_surfaces.h"
 #include "pipeline/asset_folder.h"
@@ -27,6 +23,9 @@
 #include "pipeline/individual_json.h"
 #include "pipeline/manifest.h"
 #include "pipeline/read_inputs.h"
+#include "platform/atomic_file.h"
+#include "platform/side_by_side.h"
+#include "platform/stopwatch.h"
 #include "preset/preset_json.h"
 #include "render/render_asset.h"
 #include "sim/grid_layout.h"
@@ -46,23 +45,24 @@ struct Bake {
       : given(given),
         preset(presetAsBaked(given, options)),
         options(options),
+        stages(options.stages.applied()),
         asset_dir(options.out_dir / preset.name),
         staging(asset_dir, outOfMemoryMessage(preset), options.lock),
         before(beginAssetFolder(staging.path())) {
-    timings.load = options.load_seconds;
+    timings.add("load", options.load_seconds);
   }
 
   const fs::path& dir() const { return staging.path(); }
-  // At every cycle and phase boundary: the studio's progress bar, and a line in the log when a
-  // phase after the simulation starts (each can take seconds: the log says what the bake is doing).
-  void progress(double fraction, const char* stage) const {
-    if (options.progress) options.progress(fraction, stage);
-    static const std::map<std::string, const char*> kPhases = {{"mesh", "meshes and collision hulls"},
-                                                               {"texture", "the texture set"},
-                                                               {"export", "writing the meshes and rock.vdb"},
-                                                               {"render", "rendering"}};
-    if (const auto phase = kPhases.find(stage); phase != kPhases.end())
-      spdlog::info("{}: {} ({:.1f} s in)", preset.name, phase->second, since_start.elapsed() + options.load_seconds);
+  // At every cycle and phase boundary (pipeline/bake_phases.h): the studio's progress bar, and a line in
+  // the log when a phase after the simulation starts (each can take seconds: the log says what the bake
+  // is doing).
+  void progress(std::string_view phase, double within = 0.0) const {
+    if (options.progress) options.progress(bakeProgress(phase, within), std::string(phase));
+  }
+  void startPhase(std::string_view phase) const {
+    progress(phase);
+    if (const std::string_view doing = bakePhase(phase).doing; !doing.empty())
+      spdlog::info("{}: {} ({:.1f} s in)", preset.name, doing, since_start.elapsed() + options.load_seconds);
   }
   void checkCancel() const {
     if (options.cancel && options.cancel->load()) throw BakeCancelled();
@@ -71,12 +71,13 @@ struct Bake {
   const Preset& given;  // as the caller gave it: what checkpoints record
   const Preset preset;  // presetAsBaked: what every phase bakes
   const BakeOptions& options;
+  const BakeStages stages;  // what runs, applied
   const fs::path asset_dir;
-  Stopwatch clock;        // lapped phase by phase (BakeTimings)
+  Stopwatch clock;        // lapped phase by phase
   Stopwatch since_start;  // never lapped: the log's "s in"
   StagingFolder staging;
   const AssetFolderSnapshot before;
-  BakeTimings timings;
+  PhaseTimes timings;  // stats.json's "stages" (pipeline/bake_phases.h)
 };
 
 // A simulation ready to run: from the initial rock, or from a checkpoint's state (`rockbake resume`).
@@ -88,9 +89,9 @@ struct SimulationStart {
 
 // The simulation's result, all the later phases need of it.
 struct Weathered {
-  VoxelRock rock;  // without integrity, which no later phase reads
-  Preset meshing;  // the preset with the bubble graph in effect at the end (the curvature attribute's)
-  json cycles;     // every cycle's statistics, a checkpoint's first
+  VoxelRock rock;                   // without integrity, which no later phase reads
+  std::vector<BubbleBand> bubbles;  // the bubble graph in effect at the end (the curvature attribute's)
+  json cycles;                      // every cycle's statistics, a checkpoint's first
   std::size_t initial_rock = 0, final_rock = 0, colluvium = 0;
 };
 
@@ -152,7 +153,7 @@ SimulationStart startSimulation(Bake& bake, const ResolvedShape& shape) {
                        "check its size and center against grid.size, or raise grid.resolution");
     start.simulation = std::make_unique<WeatheringSimulation>(std::move(initial), preset);
   }
-  bake.timings.shape = bake.clock.lap();
+  bake.timings.add("shape", bake.clock.lap());
   const GridLayout& g = start.simulation->rock().layout;
   spdlog::info("{}: {}×{}×{} voxels of {:.4g} units, {} rock voxels, {} cycles{}", preset.name, g.nx, g.ny, g.nz, g.h,
                start.initial_rock, plannedCycles(preset, g.h),
@@ -207,7 +208,7 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   for (int last_percent = -1; !simulation.finished();) {
     const CycleStats& c = cycles.emplace_back(simulation.step());
     bake.checkCancel();
-    bake.progress(0.7 * c.cycle / planned, "simulate");
+    bake.progress("simulate", double(c.cycle) / planned);
     if (const int percent = 100 * c.cycle / planned; percent / 10 != last_percent / 10) {
       spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", bake.preset.name, c.cycle, planned,
                    percent, c.rock, c.exposed, c.decimated);
@@ -216,16 +217,14 @@ Weathered simulate(Bake& bake, SimulationStart start) {
     checkpoints.afterCycle(simulation, cycles);
   }
   Weathered weathered;
-  weathered.meshing = bake.preset;
-  weathered.meshing.bubbles = simulation.activeParams().bubbles;
+  weathered.bubbles = simulation.activeParams().bubbles;
   weathered.rock = simulation.release();
   start.simulation.reset();  // its working state (air field, bit planes, work lists) is not needed past here
-  bake.timings.simulate = bake.clock.lap();
-  for (const auto& c : cycles) {
-    bake.timings.simulate_curvature += c.curvature_seconds;
-    bake.timings.simulate_colluvium += c.colluvium_seconds;
-    bake.timings.simulate_rockfall += c.rockfall_seconds;
-  }
+  bake.timings.add("simulate", bake.clock.lap());
+  PhaseTimes parts;  // listed even when no cycle ran (a resume at the end)
+  for (const char* part : {"curvature", "colluvium", "rockfall"}) parts.add(part, 0.0);
+  for (const auto& c : cycles) parts.add(c.times);
+  bake.timings.add(parts, "simulate_");
   weathered.cycles = concatenated(std::move(start.cycles_before), cyclesToJson(cycles));
   weathered.initial_rock = start.initial_rock;
   weathered.final_rock = weathered.rock.count(Material::Rock);
@@ -241,7 +240,7 @@ std::vector<double> placeClastsOnApron(Bake& bake, const Weathered& weathered, c
   const Preset& preset = bake.preset;
   if (!preset.clasts) return preset.mesh.lods;
   Stopwatch clock;
-  clasts = bakeClasts(weathered.rock, meshes, weathered.meshing);
+  clasts = bakeClasts(weathered.rock, meshes, preset);
   std::vector<double> targets = preset.mesh.lods;
   if (!clasts.set.stones.empty() && exportsFormat(preset, "glb")) {
     const std::vector<std::size_t> budgets =
@@ -278,29 +277,27 @@ void checkSink(const Bake& bake, const VoxelRock& rock) {
 
 // The meshes in memory: LOD0, the stones, the LOD chain and, for a texture set, the bake source
 // (pipeline/bake_meshes.h).
-std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered, ClastStage& clasts) {
+std::optional<MeshStageResult> mesh(Bake& bake, const Weathered& weathered, ClastStage& clasts,
+                                    PhaseTimes& mesh_times) {
   checkSink(bake, weathered.rock);
-  MeshStageResult meshes = buildMeshes(weathered.rock, weathered.meshing, bake.preset.texture.has_value());
+  MeshStageResult meshes =
+      buildMeshes(weathered.rock, bake.preset, bake.preset.texture.has_value(), &weathered.bubbles);
   Stopwatch clock;
   const std::vector<double> targets = placeClastsOnApron(bake, weathered, meshes, clasts);
   const double clast_seconds = clock.lap();
-  addLods(meshes, weathered.meshing, targets);
-  MeshTimings timings;
-  timings.extract = meshes.extract_seconds;
-  timings.subdivide = meshes.subdivide_seconds;
-  timings.attributes = meshes.attributes_seconds;
-  timings.simplify = meshes.simplify_seconds;
-  if (bake.preset.clasts) timings.clasts = clast_seconds;
-  bake.timings.mesh = timings;
+  addLods(meshes, bake.preset, targets);
+  // Side by side with collide(): the times are recorded once both are done.
+  mesh_times.add(meshes.times, "mesh_");
+  if (bake.preset.clasts) mesh_times.add("clasts", clast_seconds);
   return meshes;
 }
 
 // The voxels' collision hulls when export lists collision (collision/collision_hulls.h).
-std::optional<CollisionHulls> collide(Bake& bake, const Weathered& weathered) {
+std::optional<CollisionHulls> collide(const Bake& bake, const Weathered& weathered, double& seconds) {
   if (!exportsFormat(bake.preset, "collision")) return std::nullopt;
   Stopwatch clock;
   CollisionHulls hulls = buildCollisionHulls(weathered.rock, bake.preset.collision);
-  bake.timings.collision = clock.lap();
+  seconds = clock.lap();
   return hulls;
 }
 
@@ -319,7 +316,7 @@ std::optional<AssetCollision> writeCollision(Bake& bake, const Weathered& weathe
   AssetCollision collision =
       writeAssetCollision(std::move(*shapes.hulls), bake.preset.collision, pivot, bake.dir(), &shapes.clasts.set);
   shapes.hulls.reset();
-  *bake.timings.collision += clock.lap();
+  bake.timings.add("collision", clock.lap());
   return collision;
 }
 
@@ -329,10 +326,14 @@ std::optional<AssetCollision> writeCollision(Bake& bake, const Weathered& weathe
 Shapes meshAndCollide(Bake& bake, const Weathered& weathered) {
   bake.checkCancel();
   Shapes shapes;
-  if (!bake.options.mesh) return shapes;
-  bake.progress(0.7, "mesh");
-  sideBySide([&] { shapes.meshes = mesh(bake, weathered, shapes.clasts); },
-             [&] { shapes.hulls = collide(bake, weathered); });
+  if (!bake.stages.mesh) return shapes;
+  bake.startPhase("mesh");
+  PhaseTimes mesh_times;
+  double collision_seconds = 0.0;
+  sideBySide([&] { shapes.meshes = mesh(bake, weathered, shapes.clasts, mesh_times); },
+             [&] { shapes.hulls = collide(bake, weathered, collision_seconds); });
+  bake.timings.add(mesh_times);
+  if (shapes.hulls) bake.timings.add("collision", collision_seconds);
   bake.clock.lap();
   return shapes;
 }
@@ -350,7 +351,7 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   const Preset& preset = bake.preset;
   if (!preset.texture) return std::nullopt;
   bake.checkCancel();
-  bake.progress(0.75, "texture");
+  bake.startPhase("texture");
   TextureSetRequest request;
   request.params = *preset.texture;
   request.seed = preset.seed;
@@ -362,7 +363,7 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.folder = bake.dir() / kTextureFolder;
   // The set takes seconds per LOD at the house sizes: the log follows it LOD by LOD.
   request.progress = [&bake](int lod, int size, int lods_done, int lods) {
-    if (bake.options.progress) bake.options.progress(0.75 + 0.05 * lods_done / std::max(1, lods), "texture");
+    bake.progress("texture", double(lods_done) / std::max(1, lods));
     const double in = bake.since_start.elapsed() + bake.options.load_seconds;
     if (lods_done == 0)
       spdlog::info("{}: texture set: {} LOD{} unwrapped ({:.1f} s in)", bake.preset.name, lods, lods == 1 ? "" : "s",
@@ -379,14 +380,14 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   } catch (const ChartsDoNotFit& e) {
     throw InputError(preset.locate("texture.padding"), "texture.padding", e.what());
   }
-  for (const TextureSet::Step& step : set.steps)
+  for (const PhaseTime& step : set.steps.all())
     spdlog::debug("{}: texture set: {} {:.3f} s ({:.3f} CPU-s)", preset.name, step.name, step.seconds,
                   step.cpu_seconds);
   Stopwatch clast_clock;
   textureClasts(clasts, preset, request.folder);  // the stones' own small atlas
   if (!clasts.set.stones.empty()) spdlog::debug("{}: the stones' maps in {:.3f} s", preset.name, clast_clock.elapsed());
   clasts.sources.clear();
-  bake.timings.texture = bake.clock.lap();
+  bake.timings.add("texture", bake.clock.lap());
   if (!set.sizes.empty() && set.sizes[0] < lodMapSize(*preset.texture, 0))
     spdlog::info("{}: maps at {} × {}, not texture.size {}: the bake source's {} triangles fill no more", preset.name,
                  set.sizes[0], set.sizes[0], preset.texture->size,
@@ -410,31 +411,34 @@ void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<Mes
   bake.checkCancel();
   if (!meshes) {
     writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", nullptr, sinkDepth(weathered.rock, bake.preset.mesh.sink));
-    bake.timings.write_vdb = bake.clock.lap();
+    bake.timings.add("write_vdb", bake.clock.lap());
     return;
   }
-  bake.progress(0.8, "export");
+  bake.startPhase("export");
   // Two sets of files from separate data: written side by side.
+  double export_seconds = 0.0;
+  std::optional<double> vdb_seconds;
   sideBySide(
       [&] {
-        bake.timings.mesh->exports =
-            exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir(), &clasts);
+        export_seconds = exportMeshes(*meshes, textures ? &*textures : nullptr, bake.preset, bake.dir(), &clasts);
       },
       [&] {
         if (!exportsFormat(bake.preset, "vdb")) return;
         Stopwatch clock;
         writeRockVdb(weathered.rock, bake.dir() / "rock.vdb", meshes->rock_sdf.get(),
                      sinkDepth(weathered.rock, bake.preset.mesh.sink));
-        bake.timings.write_vdb = clock.lap();
+        vdb_seconds = clock.lap();
       });
+  bake.timings.add("export", export_seconds);
+  if (vdb_seconds) bake.timings.add("write_vdb", *vdb_seconds);
   bake.clock.lap();
 }
 
 void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
             const ClastSet& clasts) {
-  if (!meshes || !bake.options.render) return;
+  if (!meshes || !bake.stages.render) return;
   bake.checkCancel();
-  bake.progress(0.85, "render");
+  bake.startPhase("render");
   RenderRequest request;
   request.asset_dir = bake.dir();
   request.params = bake.preset.render;
@@ -449,7 +453,7 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
   }
   if (!clasts.stones.empty()) request.clasts = &clasts;
   const RenderOutputs rendered = renderAsset(textures ? textures->lods.at(0) : meshes->meshes, request);
-  bake.timings.render = rendered.seconds_total;
+  bake.timings.add("render", rendered.seconds_total);
   spdlog::info("{}: rendered {} in {:.1f} s", bake.preset.name,
                (bake.asset_dir / rendered.render_png.filename()).string(), rendered.seconds_total);
   if (!rendered.turntable_movie.empty())
@@ -485,11 +489,11 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
                             : f.channels == 3 ? "RGB"
                                               : "RGBA",
                             f.bits});
-  asset.preview = bake.options.render ? "render.png" : "";
-  asset.movie = bake.options.render && preset.render.turntable_frames > 0 ? "turntable.mp4" : "";
+  asset.preview = bake.stages.render ? "render.png" : "";
+  asset.movie = bake.stages.render && preset.render.turntable_frames > 0 ? "turntable.mp4" : "";
   const ManifestInputs& inputs = bake.options.manifest;
   const fs::path base = inputs.base_dir.empty() ? preset.file.parent_path() : inputs.base_dir;
-  asset.input_hash = bakeInputHash(preset, bake.options.mesh, bake.options.render, base);
+  asset.input_hash = bakeInputHash(preset, bake.stages, base);
   asset.collision = collision;
   asset.individual = individualJson(preset);
   asset.clasts = clastsJson(clasts, h, preset.units_per_meter);
@@ -498,7 +502,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
 }
 
 void writeStats(Bake& bake, const Weathered& weathered) {
-  bake.timings.total = bake.clock.elapsed() + bake.options.load_seconds;
+  bake.timings.add("total", bake.clock.elapsed() + bake.options.load_seconds);
   json stats;
   stats["cycles"] = weathered.cycles;
   stats["stages"] = bakeTimingsJson(bake.timings);
@@ -513,18 +517,18 @@ void writeStats(Bake& bake, const Weathered& weathered) {
 void writeManifestLast(const Bake& bake, const Weathered& weathered) {
   const ManifestStats stats{int(weathered.cycles.size()), weathered.initial_rock, weathered.final_rock,
                             weathered.colluvium};
-  writeManifest(bake.before, bake.preset, bake.options.manifest, bake.options.mesh, bake.options.render, stats,
+  writeManifest(bake.before, bake.preset, bake.options.manifest, bake.stages, stats,
                 {{"stages", bakeTimingsJson(bake.timings)}});
 }
 
 BakeSummary commit(Bake& bake, const Weathered& weathered) {
   bake.staging.commit();
-  bake.progress(1.0, "done");
+  if (bake.options.progress) bake.options.progress(1.0, "done");
   return {bake.asset_dir,
           int(weathered.cycles.size()),
           weathered.initial_rock,
           weathered.final_rock,
-          bake.timings.total - bake.options.load_seconds,
+          *bake.timings.seconds("total") - bake.options.load_seconds,
           bake.timings};
 }
 
@@ -532,7 +536,9 @@ BakeSummary commit(Bake& bake, const Weathered& weathered) {
 
 Preset presetAsBaked(const Preset& preset, const BakeOptions& options) {
   Preset baked = preset;
-  if (!options.textures) baked.texture.reset();
+  // The switch as given, not applied: a --no-mesh bake keeps its texture: block in the input hash, as
+  // libraries baked before recorded it.
+  if (!options.stages.textures) baked.texture.reset();
   return baked;
 }
 
@@ -540,11 +546,11 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
   return bakeAsset(preset, readInputs(preset), options);
 }
 
-// The recipe. A phase to add is one more line here, a function above, and its seconds in BakeTimings.
+// The recipe. A phase to add is one more line here, a function above, and its row in kBakePhases.
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
   Bake bake(preset, options);
   // A helper program that is missing is said before the simulation, not after it.
-  if (options.mesh && options.render) requireHelperPrograms(preset.render.turntable_frames > 0);
+  if (options.stages.applied().render) requireHelperPrograms(preset.render.turntable_frames > 0);
   const Weathered weathered = simulate(bake, startSimulation(bake, shape));
   Shapes shapes = meshAndCollide(bake, weathered);
   auto& [meshes, hulls, clasts] = shapes;

@@ -21,7 +21,8 @@
 #include <string>
 
 #include "inputs/resolve_shape.h"
-#include "pipeline/bake_timings.h"
+#include "pipeline/bake_phases.h"
+#include "pipeline/bake_stages.h"
 #include "pipeline/manifest.h"
 #include "preset/preset.h"
 #include "sim/checkpoint_format.h"
@@ -32,12 +33,10 @@ class AssetLock;
 
 struct BakeOptions {
   std::filesystem::path out_dir = "out";  // assets go to out_dir / preset.name
-  bool mesh = true;                       // --no-mesh turns the mesh stage off
-  bool render = true;                     // --no-render turns the render stage off (needs mesh)
-  bool textures = true;                   // --no-textures turns the texture set off (presetAsBaked)
-  int render_threads = 0;                 // POV-Ray's threads; 0: all cores
-  double load_seconds = 0.0;              // time the caller spent loading the preset
-  ManifestInputs manifest;                // what manifest.json records beyond the preset
+  BakeStages stages;
+  int render_threads = 0;     // POV-Ray's threads; 0: all cores
+  double load_seconds = 0.0;  // time the caller spent loading the preset
+  ManifestInputs manifest;    // what manifest.json records beyond the preset
   // When set and it turns true, the bake stops at the next cycle or stage
   // boundary by throwing BakeCancelled, before writing manifest.json.
   const std::atomic<bool>* cancel = nullptr;
@@ -56,7 +55,7 @@ struct BakeOptions {
 };
 
 // The preset as a bake with these options makes it: without its texture: block
-// when options.textures is off, so the input hash, the manifest and stats.json
+// when the texture stage is off, so the input hash, the manifest and stats.json
 // say what was baked. Checkpoints keep the preset itself, so that `resume`
 // with or without --no-textures reads it back the same.
 Preset presetAsBaked(const Preset& preset, const BakeOptions& options);
@@ -72,7 +71,7 @@ struct BakeSummary {
   std::size_t initial_rock = 0;
   std::size_t final_rock = 0;
   double seconds = 0.0;  // the bake's own, without load_seconds
-  BakeTimings timings;
+  PhaseTimes timings;    // stats.json's "stages" (pipeline/bake_phases.h)
 };
 
 // `shape` is readInputs(preset) (pipeline/read_inputs.h), read before the bake

@@ -1,8 +1,8 @@
 #include "pipeline/bake_meshes.h"
 
-#include "core/mesh_checks.h"
-#include "core/side_by_side.h"
-#include "core/stopwatch.h"
+#include "geometry/mesh_checks.h"
+#include "platform/side_by_side.h"
+#include "platform/stopwatch.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,15 +28,16 @@ bool exportsFormat(const Preset& preset, const std::string& format) {
   return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
 }
 
-MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source) {
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source,
+                            const std::vector<BubbleBand>* bubbles) {
   MeshStageResult r;
   Stopwatch clock;
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing}, &r.rock_sdf);
-  r.extract_seconds = clock.lap();
+  r.times.add("extract", clock.lap());
 
-  const std::vector<float> exposure = exposureField(rock, preset);
+  const std::vector<float> exposure = exposureField(rock, bubbles ? *bubbles : preset.bubbles);
   meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
-  r.attributes_seconds = clock.lap();
+  r.times.add("attributes", clock.lap());
 
   const GridLayout& g = rock.layout;
   // Subdivision serves coarse grids only: a level is spent while the voxels are
@@ -74,7 +75,7 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
     repairFoldOvers(meshes.colluvium);
     relaxFoldOvers(meshes.colluvium);
   }
-  r.subdivide_seconds = clock.lap();
+  r.times.add("subdivide", clock.lap());
 
   const PaletteParams palette = paletteParams(rock, preset.bake);
   if (preset.mesh.detail)
@@ -85,14 +86,14 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   meshes = applyPalette(std::move(meshes), palette);
   r.pivot = footprintPivot(rock, sinkDepth(rock, preset.mesh.sink));
   movePivot(meshes, r.pivot);
-  r.attributes_seconds += clock.lap();
+  r.times.add("attributes", clock.lap());
 
   r.refined_triangles = meshes.rock.triangles.size() + meshes.colluvium.triangles.size();
   SimplifyWarnings warnings;
   r.meshes = simplifyToError(meshes, preset.mesh.max_error * g.h, &warnings);
   for (const std::string& w : warnings) spdlog::warn("{}: {}", preset.name, w);  // in a library, the job's name
   if (keep_bake_source) r.bake_source = std::move(meshes);
-  r.simplify_seconds = clock.lap();
+  r.times.add("simplify", clock.lap());
   spdlog::debug(
       "{}: {} subdivision level(s), refined {} triangles; LOD0 rock {} vertices, {} triangles; colluvium {} vertices, "
       "{} triangles",
@@ -107,7 +108,7 @@ void addLods(MeshStageResult& r, const Preset& preset, const std::vector<double>
     SimplifyWarnings warnings;
     r.lods = simplifyLods(r.meshes, {targets}, &warnings);
     for (const std::string& w : warnings) spdlog::warn("{}: {}", preset.name, w);
-    r.simplify_seconds += clock.lap();
+    r.times.add("simplify", clock.lap());
   }
   r.lod_files.clear();
   r.lod_files.push_back(exportsFormat(preset, "glb") ? "rock.glb" : exportsFormat(preset, "ply") ? "rock.ply" : "");

@@ -17,11 +17,12 @@
 
 #include "core/surface_mesh.h"
 #include "core/voxel_rock.h"
+#include "platform/phase_times.h"
 #include "preset/preset.h"
 
 namespace rockbake {
 
-struct SmoothedSdf;  // core/openvdb_support.h
+struct SmoothedSdf;  // platform/openvdb_support.h
 
 struct MeshStageResult {
   AssetMeshes meshes;             // LOD0: attributed, coloured, about the pivot
@@ -34,16 +35,17 @@ struct MeshStageResult {
   std::array<double, 3> pivot{};                // footprintPivot: world position of the meshes' origin
   std::size_t refined_triangles = 0;            // both surfaces before simplification
   int subdivision_levels = 0;                   // Catmull-Clark levels spent (mesh/refinement_levels.h)
-  double extract_seconds = 0, attributes_seconds = 0, subdivide_seconds = 0, simplify_seconds = 0;
+  PhaseTimes times;                             // "extract", "attributes", "subdivide", "simplify" (LOD0 and the LODs)
 };
 
 // Whether the preset's `export:` list names `format` ("ply", "obj", "glb", "vdb").
 bool exportsFormat(const Preset& preset, const std::string& format);
 
 // Surfaces, attributes, subdivision and palette, LOD0 and (with keep_bake_source) the bake source, in
-// memory (no files; no LOD chain). The curvature attribute is exposure under `preset.bubbles`: pass the
-// bubble graph in effect when the simulation ended (its latest keyframe's).
-MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false);
+// memory (no files; no LOD chain). The curvature attribute is exposure under `bubbles`: the bubble
+// graph in effect when the simulation ended (its latest keyframe's); null: `preset.bubbles`.
+MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool keep_bake_source = false,
+                            const std::vector<BubbleBand>* bubbles = nullptr);
 
 // The LOD chain of `r.meshes` to `targets` (mesh.lods' form) when the preset exports glb, and
 // the name of the file that will hold each LOD (`lod_files`). No files.

@@ -126,10 +126,8 @@ JobOutcome bakeJob(const LibraryRun& run, std::size_t i) {
     const double load_seconds = seconds();
     BakeOptions bake;
     bake.out_dir = run.options.out_dir;
-    bake.mesh = run.options.mesh;
-    bake.render = run.options.render;
-    bake.textures = run.options.textures;
-    if (isCompleteAsset(asset_dir, bakeInputHash(presetAsBaked(preset, bake), bake.mesh, bake.render, run.base_dir))) {
+    bake.stages = run.options.stages;
+    if (isCompleteAsset(asset_dir, bakeInputHash(presetAsBaked(preset, bake), bake.stages, run.base_dir))) {
       outcome.status = JobStatus::Skipped;
     } else {
       bake.render_threads = run.render_threads;

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "pipeline/bake_stages.h"
 #include "preset/library.h"
 #include "preset/load_preset.h"
 
@@ -58,9 +59,7 @@ struct LibraryBakeOptions {
   int threads = 0;                // cores to share among the jobs' POV-Ray runs; 0: all
   std::vector<std::string> sets;  // --set, applied to every job before its wedge
   std::optional<int> resolution;  // --resolution
-  bool mesh = true;
-  bool render = true;
-  bool textures = true;  // false (--no-textures): no texture sets (BakeOptions::textures)
+  BakeStages stages;              // every job's (pipeline/bake_stages.h)
   const std::atomic<bool>* cancel = nullptr;
   LibraryObserver observer;
 };

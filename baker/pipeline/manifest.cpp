@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
 #include "core/sha256.h"
+#include "platform/atomic_file.h"
 #include "preset/preset_json.h"
 
 namespace rockbake {
@@ -131,10 +131,11 @@ json libraryToJson(const ManifestInputs& inputs) {
   return {{"file", inputs.library_file}, {"sha256", inputs.library_sha256}};
 }
 
-std::string bakeInputHash(const Preset& preset, bool mesh, bool render, const fs::path& base_dir) {
+std::string bakeInputHash(const Preset& preset, const BakeStages& given, const fs::path& base_dir) {
   const fs::path base = normalBase(base_dir);
+  const BakeStages stages = given.applied();
   const json fingerprint = {{"preset", portablePreset(preset, base)},
-                            {"options", {{"mesh", mesh}, {"render", mesh && render}}},
+                            {"options", {{"mesh", stages.mesh}, {"render", stages.render}}},
                             {"baker_version", ROCKBAKE_VERSION},
                             {"input_files", inputFilesJson(preset, base)}};
   return sha256Hex(fingerprint.dump());
@@ -174,8 +175,9 @@ void updateManifestOutputs(const AssetFolderSnapshot& before, const std::string&
   writeFileAtomically(file, manifest.dump(2) + "\n");
 }
 
-void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& given, bool mesh,
-                   bool render, const ManifestStats& stats, const ordered_json& timings) {
+void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& given,
+                   const BakeStages& given_stages, const ManifestStats& stats, const ordered_json& timings) {
+  const BakeStages stages = given_stages.applied();
   ManifestInputs inputs = given;
   const fs::path base = presetBase(preset, inputs);
   if (inputs.preset_file.empty()) inputs.preset_file = relativeTo(preset.file, base);
@@ -187,11 +189,11 @@ void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, cons
   ordered_json manifest;
   manifest["rockbake_manifest"] = 1;
   manifest["asset"] = preset.name;
-  manifest["inputs"] = {{"input_hash", bakeInputHash(preset, mesh, render, base)},
+  manifest["inputs"] = {{"input_hash", bakeInputHash(preset, stages, base)},
                         {"baker_version", ROCKBAKE_VERSION},
                         {"preset_sha256", presetFingerprint(preset, inputs)},
                         {"seed", preset.seed},
-                        {"options", {{"mesh", mesh}, {"render", mesh && render}}},
+                        {"options", {{"mesh", stages.mesh}, {"render", stages.render}}},
                         {"job", jobToJson(preset.name, inputs)},
                         {"library", libraryToJson(inputs)},
                         {"input_files", inputFilesJson(preset, base)},

@@ -26,6 +26,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "pipeline/bake_stages.h"
 #include "preset/load_preset.h"
 #include "preset/preset.h"
 
@@ -55,9 +56,9 @@ nlohmann::json libraryToJson(const ManifestInputs& inputs);
 
 // The fingerprint of everything that decides a bake's outputs: the resolved
 // preset (incl. seed and asset name; input paths relative to base_dir), the
-// mesh and render switches, the baker version and the bytes of the files the
+// stages run (BakeStages, applied), the baker version and the bytes of the files the
 // preset reads (shape images, blockouts). 64 hex digits (SHA-256).
-std::string bakeInputHash(const Preset& preset, bool mesh, bool render, const std::filesystem::path& base_dir);
+std::string bakeInputHash(const Preset& preset, const BakeStages& stages, const std::filesystem::path& base_dir);
 
 // The preset's one fingerprint: SHA-256 (64 hex digits) of the resolved preset
 // with its input paths relative to the inputs' base folder (the preset file's
@@ -92,8 +93,8 @@ struct ManifestStats {
 
 // Writes <dir>/manifest.json atomically; call it after every other file.
 // `timings` goes under "timings" as is (stage seconds and the like).
-void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& inputs, bool mesh,
-                   bool render, const ManifestStats& stats, const nlohmann::ordered_json& timings);
+void writeManifest(const AssetFolderSnapshot& before, const Preset& preset, const ManifestInputs& inputs,
+                   const BakeStages& stages, const ManifestStats& stats, const nlohmann::ordered_json& timings);
 
 // What the folder holds now, manifest untouched (for updateManifestOutputs).
 AssetFolderSnapshot snapshotAssetFolder(const std::filesystem::path& asset_dir);

@@ -10,8 +10,8 @@ namespace rockbake {
 
 AssetMeshes previewMeshes(const VoxelRock& rock, const Preset& preset, const SimParams& active, Palette palette) {
   AssetMeshes meshes = extractSurfaces(rock, {preset.mesh.smoothing, /*preview=*/true});
-  const std::vector<float> exposure =
-      palette == Palette::Curvature ? exposureField(rock, active) : std::vector<float>(rock.layout.cellCount(), 0.5f);
+  const std::vector<float> exposure = palette == Palette::Curvature ? exposureField(rock, active.bubbles)
+                                                                    : std::vector<float>(rock.layout.cellCount(), 0.5f);
   meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
   PaletteParams params = paletteParams(rock, preset.bake);
   params.palette = palette;

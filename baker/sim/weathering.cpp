@@ -148,6 +148,13 @@ struct ColluviumCell {
   }
 };
 
+// The cells one cycle touches, gathered as its phases run.
+struct CycleCells {
+  std::vector<Cell> changed;   // every cell whose material changed this cycle
+  std::vector<Cell> vacated;   // cells that stopped being solid: rockfall checks support around them
+  std::vector<Cell> unstable;  // colluvium out of rest, for settling
+};
+
 }  // namespace
 
 int plannedCycles(const SimParams& preset, double h) {
@@ -221,6 +228,13 @@ struct WeatheringSimulation::State {
       ++next_keyframe;
     }
   }
+
+  // The phases of one cycle, in the order step() runs them.
+  void weatherExposed();
+  std::vector<Cell> decimateWeathered();
+  void moveColluvium(const std::vector<Cell>& decimated, CycleCells& touched, CycleStats& stats);
+  void fallUntilSupported(CycleCells& touched, CycleStats& stats);
+  void updateTracking(const std::vector<Cell>& changed);
 
   SimParams preset;  // a copy: the simulation owns its parameters
   VoxelRock rock;
@@ -330,25 +344,13 @@ bool WeatheringSimulation::finished() const {
   return st.cycle > 0 && fraction && double(st.rock_count) <= *fraction * double(st.initial_rock);
 }
 
-CycleStats WeatheringSimulation::step() {
-  State& st = *state_;
-  VoxelRock& rock = st.rock;
+// Weathering: every exposure comes from the state at the cycle's start;
+// each task writes only its own voxels' integrity. Voxels of one x-row up
+// to 7 apart are counted together (AirField::countAirRun).
+void WeatheringSimulation::State::weatherExposed() {
   const GridLayout& g = rock.layout;
-  const SimParams& preset = st.preset;
-
-  st.reachKeyframes(st.cycle * g.h, true);
-
-  using Clock = std::chrono::steady_clock;
-  const auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  auto phase_start = Clock::now();
-
-  // Weathering: every exposure comes from the state at the cycle's start;
-  // each task writes only its own voxels' integrity. Voxels of one x-row up
-  // to 7 apart are counted together (AirField::countAirRun).
-  const std::vector<Cell>& cells = st.exposed.cells();
-  st.decimate.assign(cells.size(), 0);
-  const BubbleGraph& graph = st.graph;
-  const AirField& field = st.field;
+  const std::vector<Cell>& cells = exposed.cells();
+  decimate.assign(cells.size(), 0);
   const std::size_t nx = std::size_t(g.nx);
   // Every exposed voxel gets its integrity slot before the parallel writes.
   for (Cell c : cells)
@@ -373,95 +375,116 @@ CycleStats WeatheringSimulation::step() {
                         const std::size_t row = c0 / nx;
                         for (int k = 0; k < n; ++k) {
                           const int x = p.x + dx[k];
-                          const double w = graph.spheroidal[band] * applyResponse(st.response, s[k]) +
-                                           graph.cavernous[band] * applyResponse(st.response, 1.0 - s[k]);
+                          const double w = graph.spheroidal[band] * applyResponse(response, s[k]) +
+                                           graph.cavernous[band] * applyResponse(response, 1.0 - s[k]);
                           float& slot = rock.integrity.slot(row, x);
                           const float integrity = float(double(slot) - w / double(rock.durability.at(row, x)));
                           slot = integrity;
-                          st.decimate[i + std::size_t(k)] = integrity <= 0.f;
+                          decimate[i + std::size_t(k)] = integrity <= 0.f;
                         }
                         i += std::size_t(n);
                       }
                     });
+}
 
-  // Decimation, all at once.
+// Decimation, all at once: the voxels weathering brought to 0 become air.
+std::vector<Cell> WeatheringSimulation::State::decimateWeathered() {
+  const std::vector<Cell>& cells = exposed.cells();
   std::vector<Cell> decimated;
   for (std::size_t i = 0; i < cells.size(); ++i)
-    if (st.decimate[i]) decimated.push_back(cells[i]);
+    if (decimate[i]) decimated.push_back(cells[i]);
   for (Cell c : decimated) {
     rock.material[c] = Material::Air;
     rock.durability.set(c, 0.f);
   }
-  if (st.colluviumOn()) st.colluvium_model.noteChanged(rock, decimated);
+  if (colluviumOn()) colluvium_model.noteChanged(rock, decimated);
+  return decimated;
+}
+
+// Colluvium (docs/model.md §7): deposit, settle, carry some away, settle again.
+void WeatheringSimulation::State::moveColluvium(const std::vector<Cell>& decimated, CycleCells& touched,
+                                                CycleStats& stats) {
+  // Colluvium that rested on, or leaned against, decimated rock may move.
+  colluvium_model.disturbedBy(rock, decimated, touched.unstable);
+  stats.deposited = colluvium_model.deposit(rock, decimated, touched.changed, touched.unstable);
+  // Colluvium that slides off the grid's side counts as carried away.
+  stats.removed += colluvium_model.settle(rock, touched.unstable, touched.changed, touched.vacated);
+  if (colluvium) {
+    colluvium->update(touched.changed, false);
+    stats.removed +=
+        colluvium_model.remove(rock, colluvium->cells(), cycle + 1, touched.changed, touched.vacated, touched.unstable);
+  }
+  stats.removed += colluvium_model.settle(rock, touched.unstable, touched.changed, touched.vacated);
+}
+
+// Rockfall (docs/model.md §6): until nothing floats. What fell and what it
+// fell from can leave colluvium out of rest (crumbled rock, colluvium carried
+// down with a piece, piles that leaned on it); it settles, which may uncover
+// more to fall.
+void WeatheringSimulation::State::fallUntilSupported(CycleCells& touched, CycleStats& stats) {
+  for (bool first = true;; first = false) {
+    RockfallOutcome fall = rockfall.apply(rock, preset.rockfall.mode, touched.vacated, first && cycle == 0);
+    touched.vacated.clear();
+    stats.fallen += fall.fallen;
+    stats.crumbled += fall.crumbled;
+    touched.changed.insert(touched.changed.end(), fall.changed.begin(), fall.changed.end());
+    if (fall.fallen == 0 || !colluviumOn()) break;
+    colluvium_model.noteChanged(rock, fall.changed);
+    std::vector<Cell> emptied;
+    for (Cell c : fall.changed) {
+      if (rock.material[c] == Material::Colluvium) touched.unstable.push_back(c);
+      if (rock.material[c] == Material::Air) emptied.push_back(c);
+    }
+    colluvium_model.disturbedBy(rock, emptied, touched.unstable);
+    stats.removed += colluvium_model.settle(rock, touched.unstable, touched.changed, touched.vacated);
+    if (touched.vacated.empty()) break;
+  }
+}
+
+// Brings the air bits and the tracked sets up to date from the changed cells.
+void WeatheringSimulation::State::updateTracking(const std::vector<Cell>& changed) {
+  for (Cell c : changed) {
+    const VoxelCoord p = rock.layout.coord(c);
+    field.setAir(p.x, p.y, p.z, rock.material[c] == Material::Air);
+  }
+  exposed.update(changed, true);
+  if (colluvium) colluvium->update(changed, false);
+}
+
+CycleStats WeatheringSimulation::step() {
+  State& st = *state_;
+  const double h = st.rock.layout.h;
+
+  st.reachKeyframes(st.cycle * h, true);
+
+  using Clock = std::chrono::steady_clock;
+  const auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto phase_start = Clock::now();
+
+  st.weatherExposed();
+  const std::vector<Cell> decimated = st.decimateWeathered();
   CycleStats stats;
-  stats.curvature_seconds = secondsSince(phase_start);
-  stats.exposed = cells.size();
+  stats.times.add("curvature", secondsSince(phase_start));
+  stats.exposed = st.exposed.cells().size();
   stats.decimated = decimated.size();
 
-  // Every cell whose material changes this cycle, and every cell that stops
-  // being solid (what rockfall must check support around).
-  std::vector<Cell> changed = decimated;
-  std::vector<Cell> vacated = decimated;
-
-  // Colluvium (docs/model.md §7): deposit, settle, carry some away, settle again.
-  std::vector<Cell> unstable;
+  CycleCells touched{decimated, decimated, {}};
   phase_start = Clock::now();
   const ColluviumModel::SettleWork settled_before = st.colluvium_model.settleWork();
-  if (st.colluviumOn()) {
-    // Colluvium that rested on, or leaned against, decimated rock may move.
-    st.colluvium_model.disturbedBy(rock, decimated, unstable);
-    stats.deposited = st.colluvium_model.deposit(rock, decimated, changed, unstable);
-    // Colluvium that slides off the grid's side counts as carried away.
-    stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
-    if (st.colluvium) {
-      st.colluvium->update(changed, false);
-      stats.removed += st.colluvium_model.remove(rock, st.colluvium->cells(), st.cycle + 1, changed, vacated, unstable);
-    }
-    stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
-  }
-
-  // Rockfall (docs/model.md §6): until nothing floats. What fell and what it
-  // fell from can leave colluvium out of rest (crumbled rock, colluvium carried
-  // down with a piece, piles that leaned on it); it settles, which may uncover
-  // more to fall.
-  stats.colluvium_seconds = secondsSince(phase_start);
+  if (st.colluviumOn()) st.moveColluvium(decimated, touched, stats);
+  stats.times.add("colluvium", secondsSince(phase_start));
   phase_start = Clock::now();
-  if (st.rockfallOn()) {
-    for (bool first = true;; first = false) {
-      RockfallOutcome fall = st.rockfall.apply(rock, preset.rockfall.mode, vacated, first && st.cycle == 0);
-      vacated.clear();
-      stats.fallen += fall.fallen;
-      stats.crumbled += fall.crumbled;
-      changed.insert(changed.end(), fall.changed.begin(), fall.changed.end());
-      if (fall.fallen == 0 || !st.colluviumOn()) break;
-      st.colluvium_model.noteChanged(rock, fall.changed);
-      std::vector<Cell> emptied;
-      for (Cell c : fall.changed) {
-        if (rock.material[c] == Material::Colluvium) unstable.push_back(c);
-        if (rock.material[c] == Material::Air) emptied.push_back(c);
-      }
-      st.colluvium_model.disturbedBy(rock, emptied, unstable);
-      stats.removed += st.colluvium_model.settle(rock, unstable, changed, vacated);
-      if (vacated.empty()) break;
-    }
-  }
-
-  stats.rockfall_seconds = secondsSince(phase_start);
+  if (st.rockfallOn()) st.fallUntilSupported(touched, stats);
+  stats.times.add("rockfall", secondsSince(phase_start));
   const ColluviumModel::SettleWork& settled = st.colluvium_model.settleWork();
   stats.settle_work = settled.work - settled_before.work;
   stats.settle_largest_tiles = settled.largest_tiles - settled_before.largest_tiles;
   stats.settle_two_workers = settled.two_workers - settled_before.two_workers;
 
-  // Bring the air bits and the tracked sets up to date from the changed cells.
-  for (Cell c : changed) {
-    const VoxelCoord p = g.coord(c);
-    st.field.setAir(p.x, p.y, p.z, rock.material[c] == Material::Air);
-  }
-  st.exposed.update(changed, true);
-  if (st.colluvium) st.colluvium->update(changed, false);
+  st.updateTracking(touched.changed);
 
   stats.cycle = ++st.cycle;
-  stats.time = st.cycle * g.h;
+  stats.time = st.cycle * h;
   st.rock_count -= decimated.size() + stats.crumbled;
   stats.rock = st.rock_count;
   // Settling and falling move colluvium; only these make or unmake it.
@@ -481,12 +504,12 @@ WeatheringResult weatherRock(VoxelRock rock, const SimParams& preset, const Cycl
   return result;
 }
 
-std::vector<float> exposureField(const VoxelRock& rock, const SimParams& preset) {
+std::vector<float> exposureField(const VoxelRock& rock, const std::vector<BubbleBand>& bubbles) {
   const GridLayout& g = rock.layout;
   int reach = 1;
-  const std::vector<BubbleEstimator> estimators = buildEstimators(preset.bubbles, g.h, reach);
+  const std::vector<BubbleEstimator> estimators = buildEstimators(bubbles, g.h, reach);
   const AirField field(rock, reach);
-  const BubbleGraph graph = bindBubbleGraph(preset.bubbles, g, field, estimators);
+  const BubbleGraph graph = bindBubbleGraph(bubbles, g, field, estimators);
   std::vector<float> s(g.cellCount(), 0.f);
   tbb::parallel_for(0, g.nz, [&](int z) {
     const BoundEstimator& estimator = graph.estimators[std::size_t(graph.band_of_layer[std::size_t(z)])];

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/voxel_rock.h"
+#include "platform/phase_times.h"
 #include "preset/preset.h"
 
 namespace rockbake {
@@ -37,10 +38,9 @@ struct CycleStats {
   // Colluvium settling's work this cycle, and the parts of it that bound
   // what threads can share (ColluviumModel::SettleWork; for benchmarks).
   std::uint64_t settle_work = 0, settle_largest_tiles = 0, settle_two_workers = 0;
-  // Wall-clock seconds of the cycle's phases (for profiles; not deterministic).
-  double curvature_seconds = 0.0;
-  double colluvium_seconds = 0.0;
-  double rockfall_seconds = 0.0;
+  // Wall-clock seconds of the cycle's phases, "curvature", "colluvium" and "rockfall" (for
+  // profiles; not deterministic).
+  PhaseTimes times;
 };
 
 struct WeatheringResult {
@@ -109,6 +109,6 @@ WeatheringResult weatherRock(VoxelRock rock, const SimParams& preset, const Cycl
 
 // Calibrated exposure s of every voxel of `rock` (0 where not exposed rock),
 // using the preset's bubble graph: the curvature attribute later stages bake.
-std::vector<float> exposureField(const VoxelRock& rock, const SimParams& preset);
+std::vector<float> exposureField(const VoxelRock& rock, const std::vector<BubbleBand>& bubbles);
 
 }  // namespace rockbake

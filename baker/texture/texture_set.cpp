@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <memory>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 #include <stdexcept>
+#include <string_view>
+#include <variant>
 
-#include "core/side_by_side.h"
-#include "core/stopwatch.h"
+#include "platform/side_by_side.h"
+#include "platform/stopwatch.h"
 #include "texture/ambient_occlusion.h"
 #include "texture/bake_maps.h"
 #include "texture/dilate_texels.h"
@@ -65,6 +68,123 @@ HiddenTriangles hiddenSurface(const AssetMeshes& lod, const std::array<std::vect
   return hidden;
 }
 
+// Records each step of the set in TextureSet::steps: the wall-clock and CPU seconds since the last.
+class StepTimer {
+ public:
+  explicit StepTimer(PhaseTimes& steps) : steps_(steps) {}
+  void operator()(const std::string& name) {
+    const std::clock_t now = std::clock();
+    steps_.add(name, clock_.lap(), double(now - cpu_) / CLOCKS_PER_SEC);
+    cpu_ = now;
+  }
+
+ private:
+  PhaseTimes& steps_;
+  Stopwatch clock_;
+  std::clock_t cpu_ = std::clock();
+};
+
+// What a LOD's maps read besides its LodBake.
+struct MapInputs {
+  const RockLook& look;
+  const std::array<std::vector<float>, 2>& occlusion;  // per vertex of the LOD's atlas: the ORM's
+  const GroundMask& contact;                           // the mask's alpha
+};
+
+template <class T>
+using MapBaker = TextureImage<T> (*)(const LodBake& bake, const MapInputs& inputs);
+
+// One row per map kind (docs/textures.md §5): what bakes it and its file's format.
+struct MapKind {
+  TextureMap map;
+  std::variant<MapBaker<std::uint8_t>, MapBaker<std::uint16_t>, MapBaker<float>> bake;
+  int channels;
+  int bits;                  // per channel: 8, 16 or 32 (float)
+  const char* colour_space;  // "srgb" or "linear"
+  bool lod0_only;            // the height is LOD0's displacement alone
+};
+
+const MapKind kMapKinds[] = {
+    {TextureMap::Normal, [](const LodBake& b, const MapInputs&) { return bakeNormalMap(b); }, 3, 16, "linear", false},
+    {TextureMap::BaseColor, [](const LodBake& b, const MapInputs& in) { return bakeBaseColor(b, in.look); }, 3, 8,
+     "srgb", false},
+    {TextureMap::Orm, [](const LodBake& b, const MapInputs& in) { return bakeOrm(b, in.occlusion, in.look); }, 3, 8,
+     "linear", false},
+    {TextureMap::Height, [](const LodBake& b, const MapInputs&) { return bakeHeight(b); }, 1, 32, "linear", true},
+    {TextureMap::Mask, [](const LodBake& b, const MapInputs& in) { return bakeMask(b, in.look, in.contact); }, 4, 8,
+     "linear", false},
+};
+
+const MapKind& mapKind(TextureMap map) {
+  for (const MapKind& kind : kMapKinds)
+    if (kind.map == map) return kind;
+  throw std::logic_error("texture set: no row for the map " + mapName(map));
+}
+
+// The writers of texture_files.h, by the map's pixel type.
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows,
+              const TextureBands<std::uint8_t>& made) {
+  writeTexturePng(file, size, kind.channels, std::string_view(kind.colour_space) == "srgb", rows, made);
+}
+void writeMap(const std::filesystem::path& file, const MapKind&, int size, int rows,
+              const TextureBands<std::uint16_t>& made) {
+  writeTexturePng(file, size, rows, made);
+}
+void writeMap(const std::filesystem::path& file, const MapKind&, int size, int rows, const TextureBands<float>& made) {
+  writeTextureExr(file, size, rows, made);
+}
+
+// Every LOD's atlas, side by side: each LOD has its own (docs/textures.md §7), and one atlas
+// alone leaves a core idle where its flattening and packing go one step at a time. Each LOD's
+// map size goes to `sizes`: lodMapSize, no larger than `useful` unless the gutters need it.
+std::vector<UvAtlas> buildLodAtlases(const std::vector<AssetMeshes>& lods, const TextureSetRequest& request, int useful,
+                                     const std::vector<HiddenTriangles>& hidden, std::vector<int>& sizes) {
+  const TextureParams& params = request.params;
+  std::vector<UvAtlas> atlases(lods.size());
+  allSideBySide(lods.size(), [&](std::size_t k) {
+    const int asked = lodMapSize(params, int(k));
+    sizes[k] = std::min(asked, useful);
+    try {
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
+    } catch (const ChartsDoNotFit&) {
+      if (sizes[k] == asked) throw;
+      sizes[k] = asked;  // the gutters need the room the preset gave them
+      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
+    }
+  });
+  return atlases;
+}
+
+// LOD k's maps, in the order of params.maps, their files listed in `files`. Each map is made,
+// then written and freed, before the next: one map in memory at a time, or one band of it.
+void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, const LodBake& bake,
+                  const MapInputs& inputs, std::vector<TextureFile>& files, StepTimer& step) {
+  const std::string lod = "lod" + std::to_string(k);
+  const bool banded = request.whole_map_size <= 0 || size > request.whole_map_size;
+  const int rows = banded ? (request.band_rows > 0 ? request.band_rows : kBandRows) : size;
+  for (TextureMap map : request.params.maps) {
+    const MapKind& kind = mapKind(map);
+    if (kind.lod0_only && k > 0) continue;
+    step(lod + " " + mapName(map));  // the time until here: the map's own is in its file's step
+    const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
+    files.push_back(
+        {textureFileName(request.name, map, suffix), map, int(k), size, kind.channels, kind.bits, kind.colour_space});
+    const std::filesystem::path file = request.folder / files.back().file;
+    std::visit(
+        [&](auto bake_map) {
+          using Image = decltype(bake_map(bake, inputs));
+          const std::function<Image(int, int)> bands = [&bake, &inputs, bake_map](int first, int last) {
+            LodBake band = bake;
+            band.first_row = first, band.last_row = last;
+            return bake_map(band, inputs);
+          };
+          writeMap(file, kind, size, rows, bands);
+        },
+        kind.bake);
+    step(lod + " " + mapName(map) + " file");
+  }
+}
+
 }  // namespace
 
 TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
@@ -73,13 +193,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
   checkTextureParams(params);
   std::filesystem::create_directories(request.folder);
   TextureSet set;
-  Stopwatch clock;
-  std::clock_t cpu = std::clock();
-  const auto step = [&](const std::string& name) {
-    const std::clock_t now = std::clock();
-    set.steps.push_back({name, clock.lap(), double(now - cpu) / CLOCKS_PER_SEC});
-    cpu = now;
-  };
+  StepTimer step(set.steps);
   auto rays = std::make_unique<RaySource>(source);
   step("ray scene");
   const double radius = rays->radius();
@@ -106,20 +220,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     step("occlusion");
   }
 
-  // Every LOD's atlas first, side by side: each LOD has its own (docs/textures.md §7), and
-  // one atlas alone leaves a core idle where its flattening and packing go one step at a time.
-  std::vector<UvAtlas> atlases(lods.size());
-  allSideBySide(lods.size(), [&](std::size_t k) {
-    const int asked = lodMapSize(params, int(k));
-    sizes[k] = std::min(asked, useful);
-    try {
-      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
-    } catch (const ChartsDoNotFit&) {
-      if (sizes[k] == asked) throw;
-      sizes[k] = asked;  // the gutters need the room the preset gave them
-      atlases[k] = buildUvAtlas(lods[k], sizes[k], params.padding, request.ground ? &hidden[k] : nullptr);
-    }
-  });
+  std::vector<UvAtlas> atlases = buildLodAtlases(lods, request, useful, hidden, sizes);
   releaseFreedHeap();
   step("atlases");
   const int lod_count = int(lods.size());
@@ -151,67 +252,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       for (std::size_t s = 0; s < 2; ++s)
         for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
     if (k == 0) rays.reset();
-    const auto record = [&](TextureMap map, int channels, int bits, const char* space) {
-      const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
-      files[k].push_back({textureFileName(request.name, map, suffix), map, int(k), size, channels, bits, space});
-      return request.folder / files[k].back().file;
-    };
-    // Each map is made, then written and freed, before the next: one map in memory at a time,
-    // or one band of it.
-    const bool banded = request.whole_map_size <= 0 || size > request.whole_map_size;
-    const int rows = banded ? (request.band_rows > 0 ? request.band_rows : kBandRows) : size;
-    const auto bands = [&](auto&& make) {
-      return [&bake, make](int first, int last) {
-        LodBake band = bake;
-        band.first_row = first, band.last_row = last;
-        return make(band);
-      };
-    };
-    const auto write = [&](TextureMap map, auto&& make, auto&& file) {
-      step(lod + " " + mapName(map));  // the time until here: the map's own is in its file's step
-      file(bands(make));
-      step(lod + " " + mapName(map) + " file");
-    };
-    for (TextureMap map : params.maps) {
-      switch (map) {
-        case TextureMap::Normal:
-          write(
-              map, [](const LodBake& b) { return bakeNormalMap(b); },
-              [&](const TextureBands<std::uint16_t>& made) {
-                writeTexturePng(record(map, 3, 16, "linear"), size, rows, made);
-              });
-          break;
-        case TextureMap::BaseColor:
-          write(
-              map, [&look](const LodBake& b) { return bakeBaseColor(b, look); },
-              [&](const TextureBands<std::uint8_t>& made) {
-                writeTexturePng(record(map, 3, 8, "srgb"), size, 3, true, rows, made);
-              });
-          break;
-        case TextureMap::Orm:
-          write(
-              map, [&look, &occlusion](const LodBake& b) { return bakeOrm(b, occlusion, look); },
-              [&](const TextureBands<std::uint8_t>& made) {
-                writeTexturePng(record(map, 3, 8, "linear"), size, 3, false, rows, made);
-              });
-          break;
-        case TextureMap::Mask:
-          write(
-              map, [&look, &contact](const LodBake& b) { return bakeMask(b, look, contact); },
-              [&](const TextureBands<std::uint8_t>& made) {
-                writeTexturePng(record(map, 4, 8, "linear"), size, 4, false, rows, made);
-              });
-          break;
-        case TextureMap::Height:
-          if (k == 0)
-            write(
-                map, [](const LodBake& b) { return bakeHeight(b); },
-                [&](const TextureBands<float>& made) {
-                  writeTextureExr(record(map, 1, 32, "linear"), size, rows, made);
-                });
-          break;
-      }
-    }
+    writeLodMaps(request, k, size, bake, {look, occlusion, contact}, files[k], step);
     if (request.progress) request.progress(int(k), size, ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/surface_mesh.h"
+#include "platform/phase_times.h"
 #include "texture/texture_params.h"
 
 namespace rockbake {
@@ -68,11 +69,7 @@ struct TextureSet {
   std::size_t missed = 0;               // covered texels whose rays found no source within the cage
   // Per step ("lod0 rays", "lod0 normal", …): wall-clock seconds and the process's CPU
   // seconds (all threads) over it.
-  struct Step {
-    std::string name;
-    double seconds = 0, cpu_seconds = 0;
-  };
-  std::vector<Step> steps;
+  PhaseTimes steps;
 };
 
 // `lods`: LOD0 first, triangle meshes with normals, attributes and colours. `source`: the bake

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/mesh_checks.h"
-#include "core/openvdb_support.h"
+#include "geometry/mesh_checks.h"
+#include "platform/openvdb_support.h"
 #include "inputs/mesh_reader.h"
 #include "inputs/resolve_shape.h"
 #include "mesh/extract_surfaces.h"
@@ -76,11 +76,11 @@ TEST(MeshSdf, RockVdbCarriesTheFieldTheMeshWasExtractedFrom) {
 
   test::TempDir meshed, bare;
   BakeOptions options;
-  options.render = false;
+  options.stages.render = false;
   options.out_dir = meshed.path();
   bakeAsset(p, options);
   options.out_dir = bare.path();
-  options.mesh = false;
+  options.stages.mesh = false;
   bakeAsset(p, options);
 
   const TriangleMesh surface = readTriangleMesh(meshed.path() / "sdf" / "rock.ply");

@@ -12,10 +12,10 @@
 #include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
 
-#include "core/colour.h"
-#include "core/mesh_checks.h"
-#include "core/stopwatch.h"
-#include "core/triangle_geometry.h"
+#include "platform/colour.h"
+#include "geometry/mesh_checks.h"
+#include "platform/stopwatch.h"
+#include "geometry/triangle_geometry.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
@@ -75,7 +75,7 @@ const VoxelRock& bandedRock() {
 
 AssetMeshes attributed(const VoxelRock& rock, const Preset& p, int levels) {
   AssetMeshes m = extractSurfaces(rock, {p.mesh.smoothing});
-  const std::vector<float> exposure = exposureField(rock, p);
+  const std::vector<float> exposure = exposureField(rock, p.bubbles);
   m = sampleAttributes(std::move(m), {&rock, &exposure});
   m.rock = subdivideSurface(m.rock, {levels});
   m.colluvium = subdivideSurface(m.colluvium, {levels});
@@ -230,12 +230,12 @@ TEST(MeshAttributes, RefinedValuesStayWithinTheInputRange) {
   const Preset p = bandedPreset();
   const VoxelRock& rock = bandedRock();
   AssetMeshes m = extractSurfaces(rock, {1.0});
-  const std::vector<float> exposure = exposureField(rock, p);
+  const std::vector<float> exposure = exposureField(rock, p.bubbles);
   m = sampleAttributes(std::move(m), {&rock, &exposure});
   const auto range = [](const std::vector<float>& v) {
     return std::pair{*std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
   };
-  const PaletteParams palette = paletteParams(rock, BakeParams{Palette::Debug, {}, {}});
+  const PaletteParams palette = paletteParams(rock, VertexPaletteParams{Palette::Debug, {}, {}});
   for (const SurfaceMesh* base : {&m.rock, &m.colluvium}) {
     ASSERT_EQ(base->durability.size(), base->positions.size());
     const SurfaceMesh s = subdivideSurface(*base, {2});
@@ -315,7 +315,7 @@ TEST(MeshAttributes, CurvaturePaletteRedConvexBlueConcave) {
 
 TEST(MeshAttributes, NaturalPaletteDarkensWithDurability) {
   const AssetMeshes& base = bandedMeshes(0);
-  PaletteParams params = paletteParams(bandedRock(), BakeParams{});
+  PaletteParams params = paletteParams(bandedRock(), VertexPaletteParams{});
   const AssetMeshes m = applyPalette(base, params);
   const auto luminance = [](const std::array<float, 3>& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; };
   float soft = 0, hard = 0;
@@ -334,7 +334,7 @@ TEST(MeshAttributes, NaturalPaletteDarkensWithDurability) {
 
 TEST(MeshAttributes, NaturalPaletteUsesThePresetsLayersAndColluviumColour) {
   const AssetMeshes& base = bandedMeshes(0);
-  BakeParams bake;
+  VertexPaletteParams bake;
   PaletteParams range = paletteParams(bandedRock(), bake);
   // Red for the softest rock, blue for the most durable, green colluvium (all sRGB).
   bake.layers = {{double(range.durability_min), {1.0, 0.0, 0.0}}, {double(range.durability_max), {0.0, 0.0, 1.0}}};
@@ -594,9 +594,10 @@ TEST(MeshStage, WritesTheExportsThePresetAsks) {
   for (const auto& e : std::filesystem::directory_iterator(dir.path()))
     EXPECT_NE(e.path().filename().string()[0], '.') << "temporary left behind: " << e.path();
   // The stage times are parts of the call, not of anything before or after it.
-  EXPECT_GT(r.extract_seconds, 0.0);
+  EXPECT_GT(r.times.seconds("extract").value_or(0.0), 0.0);
   EXPECT_GT(export_seconds, 0.0);
-  EXPECT_LE(r.extract_seconds + r.attributes_seconds + r.subdivide_seconds + export_seconds, wall_seconds);
+  EXPECT_LE(*r.times.seconds("extract") + *r.times.seconds("attributes") + *r.times.seconds("subdivide") + export_seconds,
+            wall_seconds);
   // The bake source: the refined surface LOD0 was simplified from, finer than it.
   EXPECT_GT(r.bake_source.rock.triangles.size(), r.meshes.rock.triangles.size());
   EXPECT_EQ(r.bake_source.rock.colors.size(), r.bake_source.rock.positions.size());
@@ -610,7 +611,7 @@ TEST(MeshStage, BakeAssetWritesMeshesAndTimesTheStages) {
   p.mesh.lods = {0.5, 0.25};
   BakeOptions options;
   options.out_dir = dir.path();
-  options.render = false;
+  options.stages.render = false;
   bakeAsset(p, options);
   const auto asset = dir.path() / "banded";
   for (const char* file : {"rock.vdb", "rock.ply", "colluvium.ply", "rock.glb", "rock_lod1.glb", "rock_lod2.glb",
@@ -622,7 +623,7 @@ TEST(MeshStage, BakeAssetWritesMeshesAndTimesTheStages) {
 
   test::TempDir bare;
   options.out_dir = bare.path();
-  options.mesh = false;
+  options.stages.mesh = false;
   bakeAsset(p, options);
   EXPECT_TRUE(std::filesystem::exists(bare.path() / "banded" / "rock.vdb"));
   EXPECT_FALSE(std::filesystem::exists(bare.path() / "banded" / "rock.glb"));
@@ -644,7 +645,7 @@ TEST(MeshStage, CurvatureUsesTheLatestKeyframesBubbles) {
   test::TempDir dir;
   BakeOptions options;
   options.out_dir = dir.path();
-  options.render = false;
+  options.stages.render = false;
   bakeAsset(p, options);
   const ReadMesh baked = readPly(dir.path() / "keyframed" / "rock.ply");
 

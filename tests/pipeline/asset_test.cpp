@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "core/openvdb_support.h"
-#include "core/triangle_geometry.h"
+#include "platform/openvdb_support.h"
+#include "geometry/triangle_geometry.h"
 #include "inputs/mesh_reader.h"
 #include "inputs/resolve_shape.h"
 #include "mesh/bake_attributes.h"
@@ -121,36 +121,6 @@ openvdb::FloatGrid::Ptr readSdf(const fs::path& file) {
   return grid;
 }
 
-// 6-connected components of the rock voxels.
-std::size_t voxelComponents(const VoxelRock& rock) {
-  const GridLayout& g = rock.layout;
-  std::vector<char> seen(rock.material.size(), 0);
-  std::size_t components = 0;
-  std::vector<std::array<int, 3>> stack;
-  for (int z = 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) {
-        const std::size_t i = g.index(x, y, z);
-        if (seen[i] || rock.material[i] != Material::Rock) continue;
-        ++components;
-        seen[i] = 1;
-        stack.push_back({x, y, z});
-        while (!stack.empty()) {
-          const auto c = stack.back();
-          stack.pop_back();
-          for (int a = 0; a < 3; ++a)
-            for (int s : {-1, 1}) {
-              auto n = c;
-              n[a] += s;
-              if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= g.nx || n[1] >= g.ny || n[2] >= g.nz) continue;
-              const std::size_t j = g.index(n[0], n[1], n[2]);
-              if (!seen[j] && rock.material[j] == Material::Rock) seen[j] = 1, stack.push_back(n);
-            }
-        }
-      }
-  return components;
-}
-
 std::size_t glbTriangles(const tinygltf::Model& model) {
   std::size_t n = 0;
   for (const auto& mesh : model.meshes)
@@ -180,7 +150,7 @@ TEST(AssetLod0, WithinItsErrorBoundFarSmallerClosedAndOutward) {
   Preset p = weatheredPreset();
   BakeOptions options;
   options.out_dir = dir.path();
-  options.render = false;
+  options.stages.render = false;
   const MeshStageResult full = buildMeshes(weatheredRock(), p);
   bakeAsset(p, options);
   const fs::path asset = dir.path() / p.name;
@@ -517,7 +487,7 @@ Faithful faithfulness(const char* preset_file, int resolution) {
   const double h = rock.layout.h;
   const double voxels = double(rock.count(Material::Rock)) * h * h * h;
   const MeshDefects d = checkMesh(r.meshes.rock);
-  return {(d.volume - voxels) / voxels, voxelComponents(rock), d.shells};
+  return {(d.volume - voxels) / voxels, test::voxelComponents(rock), d.shells};
 }
 
 TEST(AssetFaithful, VolumeWithinThreePercentAndConnectionsKept) {
@@ -552,7 +522,7 @@ TEST(AssetFaithful, AOneVoxelNeckStaysConnected) {
           rock.durability.set(g.index(x, y, z), 1.0f);
         }
       }
-  ASSERT_EQ(voxelComponents(rock), 1u);
+  ASSERT_EQ(test::voxelComponents(rock), 1u);
   p.mesh.smoothing = 2.0;
   const MeshStageResult r = buildMeshes(rock, p);
   EXPECT_EQ(checkMesh(r.meshes.rock).components, 1u);
@@ -583,7 +553,7 @@ TEST(AssetJson, HasEveryFieldWithCountsThatMatchTheFiles) {
   p.mesh.detail = NoiseParams{0.01, 0.1, 2};
   BakeOptions options;
   options.out_dir = dir.path();
-  options.render = false;
+  options.stages.render = false;
   bakeAsset(p, options);
   const fs::path asset = dir.path() / p.name;
   const auto j = nlohmann::json::parse(test::readBytes(asset / "asset.json"));

@@ -1,0 +1,74 @@
+// The phase table (pipeline/bake_phases.h): the progress bar's shares, stats.json's "stages"
+// in the table's order, and a bake's progress reports read from it.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/bake_asset.h"
+#include "pipeline/bake_phases.h"
+#include "test_support.h"
+
+namespace rockbake {
+namespace {
+
+TEST(BakePhases, SharesOfTheProgressBarAddUpToOne) {
+  double sum = 0.0;
+  for (const BakePhase& p : kBakePhases) {
+    EXPECT_GE(p.progress, 0.0) << p.name;
+    sum += p.progress;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(bakeProgress("simulate"), 0.0);
+  EXPECT_DOUBLE_EQ(bakeProgress("simulate", 0.5), 0.35);
+  EXPECT_DOUBLE_EQ(bakeProgress("mesh"), 0.70);
+  EXPECT_DOUBLE_EQ(bakeProgress("texture", 1.0), 0.80);
+  EXPECT_DOUBLE_EQ(bakeProgress("render"), 0.85);
+  EXPECT_DOUBLE_EQ(bakeProgress("total"), 1.0);
+  EXPECT_THROW(bakeProgress("polish"), std::logic_error);
+}
+
+TEST(BakePhases, StagesAreWrittenInTheTablesOrderAndOnlyKnownOnes) {
+  PhaseTimes times;
+  times.add("render", 3.0);
+  times.add("load", 1.0);
+  times.add("mesh_extract", 0.5);
+  times.add("mesh_extract", 0.25);  // summed
+  const nlohmann::ordered_json stages = bakeTimingsJson(times);
+  std::vector<std::pair<std::string, double>> got;
+  for (const auto& [key, value] : stages.items()) got.emplace_back(key, value.get<double>());
+  const std::vector<std::pair<std::string, double>> want = {{"load", 1.0}, {"mesh_extract", 0.75}, {"render", 3.0}};
+  EXPECT_EQ(got, want);
+  times.add("polish", 1.0);
+  EXPECT_THROW(bakeTimingsJson(times), std::logic_error);
+}
+
+TEST(BakePhases, ABakeReportsProgressUpwardFromTheTableAndEndsDone) {
+  test::TempDir dir;
+  Preset preset = test::cubePreset(1.0, 24, 0.2);
+  preset.name = "cube";
+  BakeOptions options;
+  options.out_dir = dir.path();
+  options.stages.render = false;
+  std::vector<std::pair<double, std::string>> reports;
+  options.progress = [&](double fraction, const std::string& stage) { reports.emplace_back(fraction, stage); };
+  bakeAsset(preset, options);
+  ASSERT_GE(reports.size(), 3u);
+  for (std::size_t i = 1; i < reports.size(); ++i)
+    EXPECT_GE(reports[i].first, reports[i - 1].first) << reports[i].second << " after " << reports[i - 1].second;
+  EXPECT_EQ(reports.back(), std::make_pair(1.0, std::string("done")));
+  bool meshed = false, exported = false;
+  for (const auto& [fraction, stage] : reports) {
+    if (stage == "mesh") meshed = fraction == bakeProgress("mesh");
+    if (stage == "export") exported = fraction == bakeProgress("export");
+    EXPECT_NE(stage, "render");  // off
+  }
+  EXPECT_TRUE(meshed);
+  EXPECT_TRUE(exported);
+}
+
+}  // namespace
+}  // namespace rockbake
