@@ -35,6 +35,8 @@ if [ "$scope" = all ]; then
     git clang-format opencolorio-tools
     libgtest-dev libgmock-dev libbenchmark-dev
     openimageio-tools jq
+    # Function lengths for tests/layering/function_length.sh (its `end:` field).
+    universal-ctags
     # Turntable movies: FFmpeg with libx264, run as its own process (render/turntable_movie.h).
     ffmpeg
     # Blender's glTF importer reads collision.glb in tests/collision (Blender 3.4; its importer

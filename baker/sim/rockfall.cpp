@@ -8,7 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "core/disjoint_set.h"
+#include "geometry/disjoint_set.h"
 
 namespace rockbake {
 namespace {
@@ -36,6 +36,120 @@ int runEnd(const Material* row, int from, int end, bool solid) {
   return x;
 }
 
+// A 6-connected cluster of removed cells, and what its removal could have cut apart.
+struct Cluster {
+  VoxelCoord lo, hi;             // bounding box of the removed cells
+  bool touches_ground = false;   // a removed cell was on the layer z = 0
+  std::vector<Cell> neighbours;  // solid cells next to it, sorted
+  // What a search must reach: every neighbour, and the ground if the cluster touched it.
+  std::size_t goals() const { return neighbours.size() + (touches_ground ? 1 : 0); }
+};
+
+// The cluster of removed cells around `start`, the solid cells around it and its bounding box.
+// Each cell gathered is marked in `clustered`; `cluster` is scratch. `Plane` is the solver's
+// BitPlane (a template parameter because the type is private to it).
+template <class Plane>
+Cluster gatherCluster(const GridLayout& g, const VoxelRock& rock, Cell start, const Plane& removed, Plane& clustered,
+                      std::vector<Cell>& cluster) {
+  cluster.assign(1, start);
+  clustered.set(start);
+  Cluster k;
+  k.lo = k.hi = g.coord(start);
+  for (std::size_t i = 0; i < cluster.size(); ++i) {
+    const VoxelCoord p = g.coord(cluster[i]);
+    k.lo = {std::min(k.lo.x, p.x), std::min(k.lo.y, p.y), std::min(k.lo.z, p.z)};
+    k.hi = {std::max(k.hi.x, p.x), std::max(k.hi.y, p.y), std::max(k.hi.z, p.z)};
+    if (p.z == 0) k.touches_ground = true;
+    for (const auto& o : kFaceNeighbours) {
+      if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
+      const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
+      if (isSolid(rock.material[n])) {
+        k.neighbours.push_back(n);
+      } else if (removed.test(n) && !clustered.test(n)) {
+        clustered.set(n);
+        cluster.push_back(n);
+      }
+    }
+  }
+  std::sort(k.neighbours.begin(), k.neighbours.end());
+  k.neighbours.erase(std::unique(k.neighbours.begin(), k.neighbours.end()), k.neighbours.end());
+  return k;
+}
+
+// The cells one cluster's searches visit, added to the count shared by all searches in
+// batches; `failed` says some search has failed. Either ends every search early.
+class VisitCount {
+ public:
+  VisitCount(std::atomic<std::size_t>& spent, const std::atomic<bool>& failed, std::size_t budget)
+      : spent_(spent), failed_(failed), budget_(budget) {}
+  // One more cell visited; false when the searches must stop.
+  bool visit() { return ++unflushed_ != kFlush || (flush() && !failed_.load(std::memory_order_relaxed)); }
+  // Adds the visits not yet counted to the shared count; false when it is over the budget.
+  bool flush() {
+    const std::size_t total = spent_.fetch_add(unflushed_, std::memory_order_relaxed) + unflushed_;
+    unflushed_ = 0;
+    return total <= budget_;
+  }
+
+ private:
+  static constexpr std::size_t kFlush = 1024;
+  std::atomic<std::size_t>& spent_;
+  const std::atomic<bool>& failed_;
+  std::size_t budget_;
+  std::size_t unflushed_ = 0;
+};
+
+// Searches from one neighbour of `k` until every other neighbour is found, inside the
+// cluster's box grown by `grow` voxels: paths found there are real paths, and the detours
+// that matter are local. The ground joins every solid cell of the layer z = 0 (it holds them
+// all up), so reaching that layer reaches the ground and, through it, the rest of the layer.
+// `visited` (the solver's BitPlane) and `queue` are left clear.
+template <class Plane>
+bool connectedWithin(const GridLayout& g, const VoxelRock& rock, const Cluster& k, int grow, Plane& visited,
+                     std::vector<Cell>& queue, VisitCount& count) {
+  const std::size_t goals = k.goals();
+  const VoxelCoord box_lo{k.lo.x - grow, k.lo.y - grow, k.lo.z - grow};
+  const VoxelCoord box_hi{k.hi.x + grow, k.hi.y + grow, k.hi.z + grow};
+  const auto inBox = [&](const VoxelCoord& q) {
+    return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z && q.x <= box_hi.x &&
+           q.y <= box_hi.y && q.z <= box_hi.z;
+  };
+  std::size_t found = 0;
+  bool ground_found = false;
+  const auto visit = [&](Cell c) {
+    if (visited.test(c) || !isSolid(rock.material[c])) return;
+    visited.set(c);
+    queue.push_back(c);
+    if (std::binary_search(k.neighbours.begin(), k.neighbours.end(), c)) ++found;
+  };
+  // Every visited cell is in the queue: clearing it clears the plane.
+  struct Unvisit {
+    Plane& visited;
+    std::vector<Cell>& queue;
+    ~Unvisit() {
+      for (Cell c : queue) visited.clear(c);
+      queue.clear();
+    }
+  } unvisit{visited, queue};
+  queue.clear();
+  visit(k.neighbours.front());
+  for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
+    if (!count.visit()) return false;
+    const VoxelCoord p = g.coord(queue[head]);
+    if (p.z == 0 && !ground_found) {
+      ground_found = true;
+      if (k.touches_ground) ++found;
+      for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
+        for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
+    }
+    for (const auto& o : kFaceNeighbours) {
+      const VoxelCoord q{p.x + o[0], p.y + o[1], p.z + o[2]};
+      if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
+    }
+  }
+  return found >= goals;
+}
+
 }  // namespace
 
 RockfallSolver::RockfallSolver(const GridLayout& layout)
@@ -57,11 +171,6 @@ RockfallSolver::RockfallSolver(const GridLayout& layout)
 // cells than the budget, whichever way they are scheduled.
 bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vector<Cell>& removed) {
   const GridLayout& g = layout_;
-  struct Cluster {
-    VoxelCoord lo, hi;             // bounding box of the removed cells
-    bool touches_ground = false;   // a removed cell was on the layer z = 0
-    std::vector<Cell> neighbours;  // solid cells next to it, sorted
-  };
   std::vector<Cluster> clusters;
   {
     // Mark the removed cells; those already put in a cluster are also clustered.
@@ -76,31 +185,9 @@ bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vecto
     std::vector<Cell> cluster;
     for (Cell start : removed) {
       if (clustered_.test(start)) continue;
-      // Gather the cluster, the solid cells around it and its bounding box.
-      cluster.assign(1, start);
-      clustered_.set(start);
-      Cluster k;
-      k.lo = k.hi = g.coord(start);
-      for (std::size_t i = 0; i < cluster.size(); ++i) {
-        const VoxelCoord p = g.coord(cluster[i]);
-        k.lo = {std::min(k.lo.x, p.x), std::min(k.lo.y, p.y), std::min(k.lo.z, p.z)};
-        k.hi = {std::max(k.hi.x, p.x), std::max(k.hi.y, p.y), std::max(k.hi.z, p.z)};
-        if (p.z == 0) k.touches_ground = true;
-        for (const auto& o : kFaceNeighbours) {
-          if (!g.contains(p.x + o[0], p.y + o[1], p.z + o[2])) continue;
-          const Cell n = Cell(g.index(p.x + o[0], p.y + o[1], p.z + o[2]));
-          if (isSolid(rock.material[n])) {
-            k.neighbours.push_back(n);
-          } else if (removed_.test(n) && !clustered_.test(n)) {
-            clustered_.set(n);
-            cluster.push_back(n);
-          }
-        }
-      }
-      std::sort(k.neighbours.begin(), k.neighbours.end());
-      k.neighbours.erase(std::unique(k.neighbours.begin(), k.neighbours.end()), k.neighbours.end());
+      Cluster k = gatherCluster(g, rock, start, removed_, clustered_, cluster);
       // Nothing on one side of the cluster to be cut from the other: no search.
-      if (k.neighbours.size() + (k.touches_ground ? 1 : 0) > 1) clusters.push_back(std::move(k));
+      if (k.goals() > 1) clusters.push_back(std::move(k));
     }
   }
 
@@ -108,71 +195,16 @@ bool RockfallSolver::removalKeepsSupport(const VoxelRock& rock, const std::vecto
   // some search has failed: either ends every search early with "false".
   std::atomic<std::size_t> spent{0};
   std::atomic<bool> failed{false};
-  constexpr std::size_t kFlush = 1024;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, clusters.size(), 1), [&](const auto& range) {
     Scratch& scratch = scratch_.local();
     if (scratch.visited.words.empty()) scratch.visited.words.assign((g.cellCount() + 63) / 64, 0);
-    BitPlane& visited = scratch.visited;
-    std::vector<Cell>& queue = scratch.queue;
     for (std::size_t index = range.begin(); index != range.end() && !failed.load(std::memory_order_relaxed); ++index) {
       const Cluster& k = clusters[index];
-      const std::size_t goals = k.neighbours.size() + (k.touches_ground ? 1 : 0);
-      std::size_t unflushed = 0;
-      const auto flush = [&] {
-        const std::size_t total = spent.fetch_add(unflushed, std::memory_order_relaxed) + unflushed;
-        unflushed = 0;
-        return total <= local_budget_;
-      };
-      // Search from one neighbour until every other neighbour is found, inside
-      // the cluster's box grown by `grow` voxels: paths found there are real
-      // paths, and the detours that matter are local. The ground joins every
-      // solid cell of the layer z = 0 (it holds them all up), so reaching that
-      // layer reaches the ground and, through it, the rest of the layer.
-      const auto connectedWithin = [&](int grow) {
-        const VoxelCoord box_lo{k.lo.x - grow, k.lo.y - grow, k.lo.z - grow};
-        const VoxelCoord box_hi{k.hi.x + grow, k.hi.y + grow, k.hi.z + grow};
-        const auto inBox = [&](const VoxelCoord& q) {
-          return g.contains(q.x, q.y, q.z) && q.x >= box_lo.x && q.y >= box_lo.y && q.z >= box_lo.z &&
-                 q.x <= box_hi.x && q.y <= box_hi.y && q.z <= box_hi.z;
-        };
-        std::size_t found = 0;
-        bool ground_found = false;
-        const auto visit = [&](Cell c) {
-          if (visited.test(c) || !isSolid(rock.material[c])) return;
-          visited.set(c);
-          queue.push_back(c);
-          if (std::binary_search(k.neighbours.begin(), k.neighbours.end(), c)) ++found;
-        };
-        // Every visited cell is in the queue: clearing it clears the plane.
-        struct Unvisit {
-          BitPlane& visited;
-          std::vector<Cell>& queue;
-          ~Unvisit() {
-            for (Cell c : queue) visited.clear(c);
-            queue.clear();
-          }
-        } unvisit{visited, queue};
-        queue.clear();
-        visit(k.neighbours.front());
-        for (std::size_t head = 0; head < queue.size() && found < goals; ++head) {
-          if (++unflushed == kFlush && (!flush() || failed.load(std::memory_order_relaxed))) return false;
-          const VoxelCoord p = g.coord(queue[head]);
-          if (p.z == 0 && !ground_found) {
-            ground_found = true;
-            if (k.touches_ground) ++found;
-            for (int y = std::max(box_lo.y, 0); y <= std::min(box_hi.y, g.ny - 1); ++y)
-              for (int x = std::max(box_lo.x, 0); x <= std::min(box_hi.x, g.nx - 1); ++x) visit(Cell(g.index(x, y, 0)));
-          }
-          for (const auto& o : kFaceNeighbours) {
-            const VoxelCoord q{p.x + o[0], p.y + o[1], p.z + o[2]};
-            if (inBox(q)) visit(Cell(g.index(q.x, q.y, q.z)));
-          }
-        }
-        return found >= goals;
-      };
+      VisitCount count(spent, failed, local_budget_);
       // Most clusters are settled within one voxel around them; a few need room.
-      const bool shown = connectedWithin(1) || connectedWithin(4);
-      if (!flush() || !shown) failed.store(true, std::memory_order_relaxed);
+      const bool shown = connectedWithin(g, rock, k, 1, scratch.visited, scratch.queue, count) ||
+                         connectedWithin(g, rock, k, 4, scratch.visited, scratch.queue, count);
+      if (!count.flush() || !shown) failed.store(true, std::memory_order_relaxed);
     }
   });
   return !failed.load() && spent.load() <= local_budget_;

@@ -1,6 +1,6 @@
 #include "texture/uv_atlas.h"
 
-#include "core/triangle_geometry.h"
+#include "geometry/triangle_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,9 +16,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
-#include "core/disjoint_set.h"
-#include "core/edge_table.h"
 #include "core/vec3.h"
+#include "geometry/disjoint_set.h"
+#include "geometry/edge_table.h"
 #include "texture/pack_charts.h"
 #include "texture/parameterize_chart.h"
 #include "texture/segment_charts.h"
@@ -32,51 +32,115 @@ struct FlatChart {
   ChartUv uv;
 };
 
-// Merges flattened charts into a neighbour where the union still flattens (parameterizeChart
-// accepts it) and packs no worse: its convex hull in the plane is no larger than the two
-// charts' hulls together. The border they shared stops costing gutter texels on both sides,
-// and the halves of a chart split because it failed come back together where they can.
-// Smallest chart first, each tried against the kMergeTries neighbours it shares the longest
-// border with (docs/textures.md §1).
-// `hidden` (per triangle, or empty): charts never merge across its boundary.
-void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts,
-                 const std::vector<std::uint8_t>& hidden) {
-  constexpr std::size_t kMergeTries = 2;
-  constexpr std::uint32_t kNoChart = 0xffffffffu;
-  if (charts.size() < 2) return;
-  std::vector<std::uint32_t> owner(mesh.triangles.size(), kNoChart);
-  std::vector<double> area(charts.size(), 0.0), hull(charts.size(), 0.0);
-  for (std::uint32_t c = 0; c < charts.size(); ++c) {
-    for (std::uint32_t t : charts[c].triangles) {
-      const auto& tri = mesh.triangles[t];
-      const Vec3d a = toVec3d(mesh.positions[tri[0]]), b = toVec3d(mesh.positions[tri[1]]),
-                  d = toVec3d(mesh.positions[tri[2]]);
-      owner[t] = c;
-      area[c] += 0.5 * length(cross(sub(b, a), sub(d, a)));
-    }
-    hull[c] = convexHullArea(charts[c].uv.uv);
-  }
-  std::vector<std::uint32_t> order(charts.size()), version(charts.size(), 0);
-  using Union = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;  // (a, b, a's and b's versions)
-  const auto unionOf = [&](std::uint32_t a, std::uint32_t b) {
-    return a < b ? Union{a, b, version[a], version[b]} : Union{b, a, version[b], version[a]};
-  };
-  std::set<Union> failed;
-  for (std::uint32_t c = 0; c < order.size(); ++c) order[c] = c;
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] < area[b]; });
-  // The neighbours chart c tries, longest shared border first.
-  const auto neighbours = [&](std::uint32_t c) {
-    std::vector<std::pair<double, std::uint32_t>> shared;  // (border length, neighbour)
-    for (std::uint32_t t : charts[c].triangles)
-      for (std::uint32_t k = 0; k < 3; ++k) {
-        const std::uint32_t u = edges.faceAcross(3 * t + k);
-        if (u == EdgeTable::kNone || owner[u] == c || owner[u] == kNoChart) continue;
-        if (!hidden.empty() && hidden[u] != hidden[t]) continue;  // hidden and seen surface stay apart
+constexpr std::size_t kMergeTries = 2;
+constexpr std::uint32_t kNoChart = 0xffffffffu;
+
+// Two charts as they stand: (a, b, a's version, b's version), a < b. A chart's version counts
+// the merges into it, so a union named so is of the same triangles until either changes.
+using ChartUnion = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>;
+// A union's triangles (ascending) and its flattening.
+using FlatUnion = std::pair<std::vector<std::uint32_t>, ChartUv>;
+
+// What mergeFlattenedCharts keeps as it merges: the chart that owns each triangle, each chart's area,
+// its hull's area in the plane and its version, and the unions that failed.
+class ChartMerger {
+ public:
+  ChartMerger(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts,
+              const std::vector<std::uint8_t>& hidden)
+      : mesh_(mesh),
+        edges_(edges),
+        charts_(charts),
+        hidden_(hidden),
+        owner_(mesh.triangles.size(), kNoChart),
+        area_(charts.size(), 0.0),
+        hull_(charts.size(), 0.0),
+        version_(charts.size(), 0) {
+    for (std::uint32_t c = 0; c < charts.size(); ++c) {
+      for (std::uint32_t t : charts[c].triangles) {
         const auto& tri = mesh.triangles[t];
-        const double l = length(sub(toVec3d(mesh.positions[tri[(k + 1) % 3]]), toVec3d(mesh.positions[tri[k]])));
-        const auto it = std::find_if(shared.begin(), shared.end(), [&](const auto& p) { return p.second == owner[u]; });
+        const Vec3d a = toVec3d(mesh.positions[tri[0]]), b = toVec3d(mesh.positions[tri[1]]),
+                    d = toVec3d(mesh.positions[tri[2]]);
+        owner_[t] = c;
+        area_[c] += 0.5 * length(cross(sub(b, a), sub(d, a)));
+      }
+      hull_[c] = convexHullArea(charts[c].uv.uv);
+    }
+  }
+
+  // The charts in the order they are tried: smallest area first.
+  std::vector<std::uint32_t> smallestFirst() const {
+    std::vector<std::uint32_t> order(charts_.size());
+    for (std::uint32_t c = 0; c < order.size(); ++c) order[c] = c;
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area_[a] < area_[b]; });
+    return order;
+  }
+
+  // The flattenings of the unions that the charts order[from, from + count) would try, as
+  // things stand, made side by side.
+  std::map<ChartUnion, FlatUnion> flattenAhead(const std::vector<std::uint32_t>& order, std::size_t from,
+                                               std::size_t count) const {
+    std::vector<ChartUnion> unions;
+    for (std::size_t k = from; k < std::min(order.size(), from + count); ++k) {
+      const std::uint32_t c = order[k];
+      if (charts_[c].triangles.empty()) continue;
+      for (std::uint32_t b : neighbours(c))
+        if (const ChartUnion u = unionOf(c, b);
+            !failed_.count(u) && std::find(unions.begin(), unions.end(), u) == unions.end())
+          unions.push_back(u);
+    }
+    std::vector<FlatUnion> made(unions.size());
+    tbb::parallel_for(std::size_t(0), unions.size(),
+                      [&](std::size_t i) { made[i] = flattenUnion(std::get<0>(unions[i]), std::get<1>(unions[i])); });
+    std::map<ChartUnion, FlatUnion> ahead;
+    for (std::size_t i = 0; i < unions.size(); ++i) ahead.emplace(unions[i], std::move(made[i]));
+    return ahead;
+  }
+
+  // Merges chart c into the first of its neighbours whose union flattens and packs no worse,
+  // if any; `ahead`'s flattening of a union is used where it has one.
+  void tryMerges(std::uint32_t c, std::map<ChartUnion, FlatUnion>& ahead) {
+    if (charts_[c].triangles.empty()) return;
+    for (const std::uint32_t b : neighbours(c)) {
+      // A union tried before, of the same two charts unchanged since, would fail again.
+      const ChartUnion tried = unionOf(c, b);
+      if (failed_.count(tried)) continue;
+      const auto made = ahead.find(tried);
+      auto [both, flat] = made != ahead.end() ? std::move(made->second) : flattenUnion(c, b);
+      const double merged_hull = flat.status == ChartStatus::Ok ? convexHullArea(flat.uv) : 0.0;
+      if (flat.status != ChartStatus::Ok || merged_hull > hull_[c] + hull_[b]) {
+        failed_.insert(tried);
+        continue;
+      }
+      for (std::uint32_t t : charts_[c].triangles) owner_[t] = b;
+      charts_[b].triangles = std::move(both);
+      charts_[b].uv = std::move(flat);
+      charts_[c].triangles.clear();
+      area_[b] += area_[c];
+      hull_[b] = merged_hull;
+      ++version_[b];
+      break;
+    }
+  }
+
+ private:
+  ChartUnion unionOf(std::uint32_t a, std::uint32_t b) const {
+    return a < b ? ChartUnion{a, b, version_[a], version_[b]} : ChartUnion{b, a, version_[b], version_[a]};
+  }
+
+  // The neighbours chart c tries, longest shared border first.
+  std::vector<std::uint32_t> neighbours(std::uint32_t c) const {
+    std::vector<std::pair<double, std::uint32_t>> shared;  // (border length, neighbour)
+    for (std::uint32_t t : charts_[c].triangles)
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t u = edges_.faceAcross(3 * t + k);
+        if (u == EdgeTable::kNone || owner_[u] == c || owner_[u] == kNoChart) continue;
+        if (!hidden_.empty() && hidden_[u] != hidden_[t]) continue;  // hidden and seen surface stay apart
+        const auto& tri = mesh_.triangles[t];
+        const double l = length(sub(toVec3d(mesh_.positions[tri[(k + 1) % 3]]), toVec3d(mesh_.positions[tri[k]])));
+        const auto it =
+            std::find_if(shared.begin(), shared.end(), [&](const auto& p) { return p.second == owner_[u]; });
         if (it == shared.end())
-          shared.push_back({l, owner[u]});
+          shared.push_back({l, owner_[u]});
         else
           it->first += l;
       }
@@ -84,13 +148,37 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
     std::vector<std::uint32_t> tries;
     for (std::size_t i = 0; i < shared.size() && i < kMergeTries; ++i) tries.push_back(shared[i].second);
     return tries;
-  };
-  const auto flattenUnion = [&](std::uint32_t a, std::uint32_t b) {
+  }
+
+  FlatUnion flattenUnion(std::uint32_t a, std::uint32_t b) const {
     std::vector<std::uint32_t> both;
-    std::merge(charts[a].triangles.begin(), charts[a].triangles.end(), charts[b].triangles.begin(),
-               charts[b].triangles.end(), std::back_inserter(both));
-    return std::make_pair(std::move(both), parameterizeChart(mesh, both));
-  };
+    std::merge(charts_[a].triangles.begin(), charts_[a].triangles.end(), charts_[b].triangles.begin(),
+               charts_[b].triangles.end(), std::back_inserter(both));
+    return std::make_pair(std::move(both), parameterizeChart(mesh_, both));
+  }
+
+  const SurfaceMesh& mesh_;
+  const EdgeTable& edges_;
+  std::vector<FlatChart>& charts_;
+  const std::vector<std::uint8_t>& hidden_;  // per triangle, or empty
+  std::vector<std::uint32_t> owner_;         // per triangle: its chart, or kNoChart
+  std::vector<double> area_, hull_;          // per chart
+  std::vector<std::uint32_t> version_;       // per chart
+  std::set<ChartUnion> failed_;
+};
+
+// Merges flattened charts into a neighbour where the union still flattens (parameterizeChart
+// accepts it) and packs no worse: its convex hull in the plane is no larger than the two
+// charts' hulls together. The border they shared stops costing gutter texels on both sides,
+// and the halves of a chart split because it failed come back together where they can.
+// Smallest chart first, each tried against the kMergeTries neighbours it shares the longest
+// border with (docs/textures.md §1).
+// `hidden` (per triangle, or empty): charts never merge across its boundary.
+void mergeFlattenedCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<FlatChart>& charts,
+                          const std::vector<std::uint8_t>& hidden) {
+  if (charts.size() < 2) return;
+  ChartMerger merger(mesh, edges, charts, hidden);
+  const std::vector<std::uint32_t> order = merger.smallestFirst();
   // The tries are made in order, one after another, since each merge changes what later charts
   // meet. Their flattenings, nearly all of a try's time, are made ahead, side by side, for the
   // next kAhead charts as things stand; a union's flattening depends on its two charts' triangles
@@ -98,46 +186,10 @@ void mergeCharts(const SurfaceMesh& mesh, const EdgeTable& edges, std::vector<Fl
   // unchanged, and is then exactly what the try would make. The result does not depend on the
   // thread count.
   constexpr std::size_t kAhead = 32;
-  std::map<Union, std::pair<std::vector<std::uint32_t>, ChartUv>> ahead;
+  std::map<ChartUnion, FlatUnion> ahead;
   for (std::size_t at = 0; at < order.size(); ++at) {
-    if (at % kAhead == 0) {
-      std::vector<Union> unions;
-      for (std::size_t k = at; k < std::min(order.size(), at + kAhead); ++k) {
-        const std::uint32_t c = order[k];
-        if (charts[c].triangles.empty()) continue;
-        for (std::uint32_t b : neighbours(c))
-          if (const Union u = unionOf(c, b);
-              !failed.count(u) && std::find(unions.begin(), unions.end(), u) == unions.end())
-            unions.push_back(u);
-      }
-      std::vector<std::pair<std::vector<std::uint32_t>, ChartUv>> made(unions.size());
-      tbb::parallel_for(std::size_t(0), unions.size(),
-                        [&](std::size_t i) { made[i] = flattenUnion(std::get<0>(unions[i]), std::get<1>(unions[i])); });
-      ahead.clear();
-      for (std::size_t i = 0; i < unions.size(); ++i) ahead.emplace(unions[i], std::move(made[i]));
-    }
-    const std::uint32_t c = order[at];
-    if (charts[c].triangles.empty()) continue;
-    for (const std::uint32_t b : neighbours(c)) {
-      // A union tried before, of the same two charts unchanged since, would fail again.
-      const Union tried = unionOf(c, b);
-      if (failed.count(tried)) continue;
-      const auto made = ahead.find(tried);
-      auto [both, flat] = made != ahead.end() ? std::move(made->second) : flattenUnion(c, b);
-      const double merged_hull = flat.status == ChartStatus::Ok ? convexHullArea(flat.uv) : 0.0;
-      if (flat.status != ChartStatus::Ok || merged_hull > hull[c] + hull[b]) {
-        failed.insert(tried);
-        continue;
-      }
-      for (std::uint32_t t : charts[c].triangles) owner[t] = b;
-      charts[b].triangles = std::move(both);
-      charts[b].uv = std::move(flat);
-      charts[c].triangles.clear();
-      area[b] += area[c];
-      hull[b] = merged_hull;
-      ++version[b];
-      break;
-    }
+    if (at % kAhead == 0) ahead = merger.flattenAhead(order, at, kAhead);
+    merger.tryMerges(order[at], ahead);
   }
   charts.erase(std::remove_if(charts.begin(), charts.end(), [](const FlatChart& c) { return c.triangles.empty(); }),
                charts.end());
@@ -184,7 +236,7 @@ std::vector<FlatChart> flattenSurface(const SurfaceMesh& mesh, int surface, cons
     }
     pending = std::move(again);
   }
-  mergeCharts(mesh, edges, done, hidden);
+  mergeFlattenedCharts(mesh, edges, done, hidden);
   // Charts in order of their lowest triangle, whatever round finished them.
   std::sort(done.begin(), done.end(),
             [](const FlatChart& a, const FlatChart& b) { return a.triangles.front() < b.triangles.front(); });
