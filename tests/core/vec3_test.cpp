@@ -1,34 +1,19 @@
-// The mesh kernel's vector operations and triangle geometry (core/vec3.h,
-// core/triangle_geometry.h; docs/mesh-kernel.md): known values, and the
-// evaluation order each one promises, to the bit.
+// The mesh kernel's vector operations (core/vec3.h; docs/mesh-kernel.md): known
+// values, and the evaluation order each one promises, to the bit. Triangle
+// geometry built on them: tests/geometry/triangle_geometry_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 
-#include "core/hash.h"
-#include "core/triangle_geometry.h"
 #include "core/vec3.h"
+#include "test_support.h"
 
 namespace rockbake {
 namespace {
 
-// Reproducible values spread over many magnitudes, so a changed order of
-// operations shows up as a changed last bit.
-double value(std::uint64_t i) {
-  const std::uint64_t h = mix64(i);
-  return (double(h >> 11) / double(1ull << 53) - 0.5) * std::ldexp(1.0, int(h % 40) - 20);
-}
-Vec3d randomVec3d(std::uint64_t i) {
-  return {value(3 * i), value(3 * i + 1), value(3 * i + 2)};
-}
-Vec3f randomVec3f(std::uint64_t i) {
-  return toVec3f(randomVec3d(i));
-}
-
-bool sameBits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
+using test::randomVec3d;
+using test::randomVec3f;
+using test::sameBits;
 
 TEST(Vec3, KnownValues) {
   const Vec3d x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
@@ -68,42 +53,6 @@ TEST(Vec3, EvaluationOrderIsTheWrittenOne) {
     const float dx = fa[0] - fb[0], dy = fa[1] - fb[1], dz = fa[2] - fb[2];
     ASSERT_EQ(distanceSquared(fa, fb), dx * dx + dy * dy + dz * dz) << i;  // in float throughout
   }
-}
-
-TEST(TriangleGeometry, NormalAreaAndVolumeOfKnownTriangles) {
-  const Vec3f a{0, 0, 0}, b{2, 0, 0}, c{0, 3, 0};
-  EXPECT_EQ(triangleNormal(a, b, c), (Vec3d{0, 0, 6}));  // counter-clockwise from +z: up, twice the area
-  EXPECT_EQ(triangleNormal(a, c, b), (Vec3d{0, 0, -6}));
-  EXPECT_EQ(triangleArea(a, b, c), 3.0);
-  // A unit cube's corner tetrahedron, and the cube from its twelve triangles.
-  EXPECT_DOUBLE_EQ(tetVolume(Vec3d{1, 0, 0}, Vec3d{0, 1, 0}, Vec3d{0, 0, 1}), 1.0 / 6.0);
-  EXPECT_DOUBLE_EQ(tetVolume(Vec3d{1, 0, 0}, Vec3d{0, 0, 1}, Vec3d{0, 1, 0}), -1.0 / 6.0);
-  EXPECT_DOUBLE_EQ(tetVolume(Vec3f{1, 0, 0}, Vec3f{0, 1, 0}, Vec3f{0, 0, 1}), 1.0 / 6.0);
-}
-
-TEST(TriangleGeometry, NormalAndAreaAreTheCrossProductInDouble) {
-  for (std::uint64_t i = 0; i < 2000; ++i) {
-    const Vec3f a = randomVec3f(3 * i), b = randomVec3f(3 * i + 1), c = randomVec3f(3 * i + 2);
-    const double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-    const double w[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    const Vec3d normal = triangleNormal(a, b, c);
-    for (int k = 0; k < 3; ++k) ASSERT_TRUE(sameBits(normal[k], n[k])) << i;
-    ASSERT_TRUE(sameBits(triangleArea(a, b, c), 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]))) << i;
-  }
-}
-
-TEST(TriangleGeometry, ZeroAreaIsRelativeToTheTrianglesSize) {
-  // A cap: the apex 1e-7 off the long edge's line is zero area; 1e-5 off is not.
-  for (float scale : {1e-3f, 1.0f, 1e3f}) {
-    const Vec3f a{0, 0, 0}, b{scale, 0, 0};
-    EXPECT_TRUE(isZeroArea(a, b, Vec3f{0.5f * scale, 1e-7f * scale, 0})) << scale;
-    EXPECT_FALSE(isZeroArea(a, b, Vec3f{0.5f * scale, 1e-5f * scale, 0})) << scale;
-  }
-  // Repeated corners and a needle.
-  EXPECT_TRUE(isZeroArea(Vec3f{1, 2, 3}, Vec3f{1, 2, 3}, Vec3f{4, 5, 6}));
-  EXPECT_TRUE(isZeroArea(Vec3f{0, 0, 0}, Vec3f{1, 1, 1}, Vec3f{2, 2, 2}));
-  EXPECT_FALSE(isZeroArea(Vec3f{0, 0, 0}, Vec3f{1, 0, 0}, Vec3f{0, 1, 0}));
 }
 
 }  // namespace

@@ -23,23 +23,12 @@ make_work_dir() {
   trap 'exit 130' INT TERM
 }
 
-# write_small_preset FILE: a cube weathered for a few cycles at resolution 20, a 96×72 render.
+# write_small_preset FILE: a cube weathered for a few cycles at resolution 20, a 96×72 render
+# (the C++ tests' small preset, tests/data/small.yaml, coarser and younger).
+small_preset=$(cd "$(dirname "${BASH_SOURCE[0]}")/../data" && pwd)/small.yaml
 write_small_preset() {
-  cat >"$1" <<'YAML'
-rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 20}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-bubbles:
-  - up_to: 1.0
-    bubble: {sphere: {radius: 0.3}}
-    spheroidal: 1.0
-    cavernous: 0.2
-time: 0.3
-render: {width: 96, height: 72}
-YAML
+  sed -e 's/resolution: 24}$/resolution: 20}/' -e 's/^time: 0\.5$/time: 0.3/' "$small_preset" >"$1"
+  echo 'render: {width: 96, height: 72}' >>"$1"
 }
 
 # check_render ASSET_DIR: render.exr is there, render.png is a PNG and not one flat colour

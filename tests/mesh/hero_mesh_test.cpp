@@ -94,36 +94,6 @@ std::size_t count(const VoxelRock& rock, Material m) {
   return std::size_t(std::count(rock.material.begin(), rock.material.end(), m));
 }
 
-// 6-connected components of one material's voxels.
-std::size_t voxelComponents(const VoxelRock& rock, Material material) {
-  const GridLayout& g = rock.layout;
-  std::vector<char> seen(rock.material.size(), 0);
-  std::size_t components = 0;
-  std::vector<std::array<int, 3>> stack;
-  for (int z = 0; z < g.nz; ++z)
-    for (int y = 0; y < g.ny; ++y)
-      for (int x = 0; x < g.nx; ++x) {
-        const std::size_t i = g.index(x, y, z);
-        if (seen[i] || rock.material[i] != material) continue;
-        ++components;
-        seen[i] = 1;
-        stack.push_back({x, y, z});
-        while (!stack.empty()) {
-          const auto c = stack.back();
-          stack.pop_back();
-          for (int a = 0; a < 3; ++a)
-            for (int s : {-1, 1}) {
-              auto n = c;
-              n[a] += s;
-              if (n[0] < 0 || n[1] < 0 || n[2] < 0 || n[0] >= g.nx || n[1] >= g.ny || n[2] >= g.nz) continue;
-              const std::size_t j = g.index(n[0], n[1], n[2]);
-              if (!seen[j] && rock.material[j] == material) seen[j] = 1, stack.push_back(n);
-            }
-        }
-      }
-  return components;
-}
-
 // The point of triangle abc nearest p (Ericson, Real-Time Collision Detection, §5.1.5).
 Vec3d closestOnTriangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const Vec3d ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
@@ -246,10 +216,10 @@ TEST(MeshHero, Lod0IsClosedAndFaithfulToTheVoxels) {
                            << d.zero_area << " zero-area";
     const double voxels = double(count(rock, material)) * voxel;
     EXPECT_NEAR(d.volume / voxels, 1.0, 0.03) << mesh->name;
-    EXPECT_LE(d.shells, voxelComponents(rock, material)) << mesh->name;
+    EXPECT_LE(d.shells, test::voxelComponents(rock, material)) << mesh->name;
     EXPECT_GE(d.shells, 1u) << mesh->name;
   }
-  EXPECT_EQ(voxelComponents(rock, Material::Rock), 2u);  // the rock and the boulder
+  EXPECT_EQ(test::voxelComponents(rock, Material::Rock), 2u);  // the rock and the boulder
   EXPECT_EQ(checkMesh(r.meshes.rock).shells, 2u);
 }
 

@@ -31,16 +31,11 @@ movie_refused() {
   ok "$what (exit $status)"
 }
 
-cat > "$dir/small.yaml" <<'YAML'
-rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 24}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-time: 0.5
-render: {width: 96, height: 72, antialias: 0, turntable: {frames: 2}}
-YAML
+# The C++ tests' small preset (tests/data/small.yaml) with a small render and a two-frame turntable.
+{
+  cat "$(dirname "${BASH_SOURCE[0]}")/../data/small.yaml"
+  echo 'render: {width: 96, height: 72, antialias: 0, turntable: {frames: 2}}'
+} > "$dir/small.yaml"
 mkdir "$dir/bin" "$dir/nopov"
 # PATH without povray: only what a shell script needs.
 for tool in sh bash cat sleep head; do ln -s "$(command -v $tool)" "$dir/nopov/$tool"; done

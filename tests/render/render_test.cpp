@@ -2,12 +2,10 @@
 // with OpenEXR; OpenColorIO against the sRGB formula; failure messages.
 #include <gtest/gtest.h>
 
-#include <OpenEXR/ImfArray.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
-#include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
@@ -25,6 +23,7 @@
 #include "render/preview.h"
 #include "render/render_asset.h"
 #include "render/scene.h"
+#include "exr_image.h"
 #include "test_support.h"
 
 namespace rockbake {
@@ -86,23 +85,8 @@ RenderRequest request(const std::filesystem::path& dir, const std::string& tmpl,
   return r;
 }
 
-struct Image {
-  int width = 0, height = 0;
-  std::vector<Imf::Rgba> px;
-  const Imf::Rgba& at(int x, int y) const { return px[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
-};
-
-Image readExr(const std::filesystem::path& file) {
-  Imf::RgbaInputFile in(file.string().c_str());
-  const auto dw = in.dataWindow();
-  Image img;
-  img.width = dw.max.x - dw.min.x + 1;
-  img.height = dw.max.y - dw.min.y + 1;
-  img.px.resize(std::size_t(img.width) * std::size_t(img.height));
-  in.setFrameBuffer(img.px.data() - dw.min.x - std::ptrdiff_t(dw.min.y) * img.width, 1, std::size_t(img.width));
-  in.readPixels(dw.min.y, dw.max.y);
-  return img;
-}
+using test::ExrImage;
+using test::readExr;
 
 std::string stringAttr(const Imf::Header& h, const char* name) {
   const auto* a = h.findTypedAttribute<Imf::StringAttribute>(name);
@@ -135,14 +119,13 @@ TEST(RenderTest, StillIsHalfEXRWithMetadataAndFramedAsset) {
   EXPECT_EQ(frame->value(), 0.0f);
 
   // The debug template's background is black; the asset is everything else.
-  const Image img = readExr(out.render_exr);
+  const ExrImage img = readExr(out.render_exr);
   ASSERT_EQ(img.width, 64);
   ASSERT_EQ(img.height, 48);
   double n = 0, sx = 0, sy = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
-      const auto& p = img.at(x, y);
-      if (float(p.r) + float(p.g) + float(p.b) > 0.02f) n += 1, sx += x + 0.5, sy += y + 0.5;
+      if (img.at("R", x, y) + img.at("G", x, y) + img.at("B", x, y) > 0.02f) n += 1, sx += x + 0.5, sy += y + 0.5;
     }
   const double coverage = n / (img.width * img.height);
   EXPECT_GT(coverage, 0.15);
@@ -162,11 +145,11 @@ TEST(RenderTest, FramingFillsTallAndWideImages) {
     for (const auto& [w, h] : {std::pair{64, 32}, std::pair{32, 64}}) {
       test::TempDir dir;
       const RenderOutputs out = renderAsset(a, request(dir.path(), "debug", w, h));
-      const Image img = readExr(out.render_exr);
+      const ExrImage img = readExr(out.render_exr);
       int border = 0, x0 = w, x1 = -1, y0 = h, y1 = -1;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-          if (float(img.at(x, y).r) > 0.02f) {
+          if (img.at("R", x, y) > 0.02f) {
             x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
             if (x == 0 || y == 0 || x == w - 1 || y == h - 1) ++border;
           }
@@ -180,16 +163,15 @@ TEST(RenderTest, FramingFillsTallAndWideImages) {
 TEST(RenderTest, DebugColoursSurvive) {
   test::TempDir dir;
   const RenderOutputs out = renderAsset(twoLayerRock(), request(dir.path(), "debug", 64, 48));
-  const Image img = readExr(out.render_exr);
+  const ExrImage img = readExr(out.render_exr);
   // The sphere fills the image height about its centre; the camera is 20°
   // above the horizon, so the red (upper) half is above the image centre.
-  const Imf::Rgba& top = img.at(32, 24 - 12);
-  const Imf::Rgba& bottom = img.at(32, 24 + 12);
-  EXPECT_GT(float(top.r), 0.9f);
-  EXPECT_LT(float(top.b), 0.05f);
-  EXPECT_LT(float(bottom.r), 0.05f);
-  EXPECT_GT(float(bottom.b), 0.9f);
-  EXPECT_LT(float(top.g) + float(bottom.g), 0.05f);
+  const int top = 24 - 12, bottom = 24 + 12;
+  EXPECT_GT(img.at("R", 32, top), 0.9f);
+  EXPECT_LT(img.at("B", 32, top), 0.05f);
+  EXPECT_LT(img.at("R", 32, bottom), 0.05f);
+  EXPECT_GT(img.at("B", 32, bottom), 0.9f);
+  EXPECT_LT(img.at("G", 32, top) + img.at("G", 32, bottom), 0.05f);
 }
 
 double srgbEncode(double v) {
@@ -230,7 +212,7 @@ TEST(RenderTest, TurntableFramesDifferAndContactSheetHasGridSize) {
   }));
   const RenderOutputs out = renderAsset(a, request(dir.path(), "studio", 40, 30, 3));
   ASSERT_EQ(out.turntable_frames.size(), 3u);
-  std::vector<Image> frames;
+  std::vector<ExrImage> frames;
   for (int i = 0; i < 3; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "turntable/%04d.exr", i);
@@ -242,18 +224,18 @@ TEST(RenderTest, TurntableFramesDifferAndContactSheetHasGridSize) {
   }
   for (int i = 0; i < 3; ++i)
     for (int j = i + 1; j < 3; ++j) {
+      const ExrImage &fi = frames[std::size_t(i)], &fj = frames[std::size_t(j)];
       double diff = 0;
-      for (std::size_t k = 0; k < frames[0].px.size(); ++k)
-        diff += std::abs(float(frames[std::size_t(i)].px[k].r) - float(frames[std::size_t(j)].px[k].r)) +
-                std::abs(float(frames[std::size_t(i)].px[k].g) - float(frames[std::size_t(j)].px[k].g));
-      EXPECT_GT(diff / double(frames[0].px.size()), 1e-3) << i << " vs " << j;
+      for (std::size_t k = 0; k < frames[0].plane("R").size(); ++k)
+        diff += std::abs(fi.plane("R")[k] - fj.plane("R")[k]) + std::abs(fi.plane("G")[k] - fj.plane("G")[k]);
+      EXPECT_GT(diff / double(frames[0].plane("R").size()), 1e-3) << i << " vs " << j;
     }
   // 3 frames → 2 × 2 grid of 40 × 30.
-  const Image sheet = readExr(out.turntable_sheet_exr);
+  const ExrImage sheet = readExr(out.turntable_sheet_exr);
   EXPECT_EQ(sheet.width, 80);
   EXPECT_EQ(sheet.height, 60);
-  EXPECT_FLOAT_EQ(float(sheet.at(39, 29).r), float(frames[0].at(39, 29).r));
-  EXPECT_FLOAT_EQ(float(sheet.at(40 + 5, 7).g), float(frames[1].at(5, 7).g));
+  EXPECT_FLOAT_EQ(sheet.at("R", 39, 29), frames[0].at("R", 39, 29));
+  EXPECT_FLOAT_EQ(sheet.at("G", 40 + 5, 7), frames[1].at("G", 5, 7));
   EXPECT_TRUE(std::filesystem::is_regular_file(out.turntable_sheet_png));
   EXPECT_TRUE(std::filesystem::is_regular_file(out.render_png));
 }
@@ -333,11 +315,9 @@ TEST(RenderTest, AStillRendersInBandsOfRowsOnePovrayEach) {
   EXPECT_NE(calls.find("+WT1 +BS32 +SR1 +ER64"), std::string::npos) << calls;
   EXPECT_NE(calls.find("+WT1 +BS32 +SR65 +ER120"), std::string::npos) << calls;
   // Every row was rendered: the sky's gradient reaches the first and the last row.
-  const Image img = readExr(out.render_exr);
-  for (const int y : {0, 63, 64, 119}) {
-    const Imf::Rgba& p = img.at(0, y);
-    EXPECT_GT(float(p.r) + float(p.g) + float(p.b), 0.0f) << "row " << y;
-  }
+  const ExrImage img = readExr(out.render_exr);
+  for (const int y : {0, 63, 64, 119})
+    EXPECT_GT(img.at("R", 0, y) + img.at("G", 0, y) + img.at("B", 0, y), 0.0f) << "row " << y;
 }
 
 TEST(RenderTest, PovrayArgumentsAreExplicit) {
@@ -439,14 +419,14 @@ namespace {
 TEST(RenderTest, RerenderFromAssetFolderNeedsNoMeshes) {
   test::TempDir dir;
   const RenderOutputs first = renderAsset(twoLayerRock(1), request(dir.path(), "debug", 32, 24));
-  const Image before = readExr(first.render_exr);
+  const ExrImage before = readExr(first.render_exr);
   std::filesystem::remove(first.render_exr);
   RenderRequest again = request(dir.path(), "studio", 32, 24);
   again.template_override = "debug";
   const RenderOutputs second = rerenderAsset(again);
-  const Image after = readExr(second.render_exr);
-  ASSERT_EQ(before.px.size(), after.px.size());
-  for (std::size_t i = 0; i < before.px.size(); ++i) EXPECT_EQ(float(before.px[i].r), float(after.px[i].r)) << i;
+  const ExrImage after = readExr(second.render_exr);
+  ASSERT_EQ(before.plane("R").size(), after.plane("R").size());
+  for (std::size_t i = 0; i < before.plane("R").size(); ++i) EXPECT_EQ(before.plane("R")[i], after.plane("R")[i]) << i;
   test::TempDir empty;
   EXPECT_THROW(rerenderAsset(request(empty.path(), "debug", 32, 24)), std::runtime_error);
 }

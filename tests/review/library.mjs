@@ -8,21 +8,9 @@ import path from 'node:path';
 
 export { api, check, raw, sleep, until } from '../studio/harness.mjs';
 
-const SMALL = `rockbake: 1
-name: small
-seed: 3
-grid: {size: [2.0, 2.0, 2.0], resolution: 24}
-shape:
-  box: {size: [1.5, 1.5, 1.5]}
-bubbles:
-  - up_to: 1.0
-    bubble: {sphere: {radius: 0.3}}
-    spheroidal: 1.0
-    cavernous: 0.2
-time: 0.5
-tags: [test]
-render: {width: 96, height: 72, antialias: 0, turntable: {frames: 3}}
-`;
+// The C++ tests' small preset (tests/data/small.yaml), tagged, with small renders.
+const SMALL = fs.readFileSync(new URL('../data/small.yaml', import.meta.url), 'utf8') +
+  'tags: [test]\nrender: {width: 96, height: 72, antialias: 0, turntable: {frames: 3}}\n';
 
 // Writes the presets and the library file into `dir`; `time` changes the
 // presets' inputs (a re-bake with another input hash).

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <numeric>
 
 #include "core/error.h"
@@ -112,30 +111,6 @@ TEST(Geology, ASoftBedDipping30DegreesIsCutBackAlongATiltedNotch) {
   EXPECT_NEAR(dip, 30.0, 8.0);
 }
 
-// 6-connected components of rock.
-int rockComponents(const VoxelRock& rock) {
-  const GridLayout& g = rock.layout;
-  std::vector<std::uint8_t> seen(g.cellCount(), 0);
-  int components = 0;
-  for (std::size_t start = 0; start < g.cellCount(); ++start) {
-    if (seen[start] || rock.material[start] != Material::Rock) continue;
-    ++components;
-    std::deque<std::size_t> queue{start};
-    seen[start] = 1;
-    while (!queue.empty()) {
-      const VoxelCoord c = g.coord(queue.front());
-      queue.pop_front();
-      for (const auto& o : kFaceNeighbours) {
-        const int x = c.x + o[0], y = c.y + o[1], z = c.z + o[2];
-        if (!isRock(rock, x, y, z) || seen[g.index(x, y, z)]) continue;
-        seen[g.index(x, y, z)] = 1;
-        queue.push_back(g.index(x, y, z));
-      }
-    }
-  }
-  return components;
-}
-
 TEST(Geology, AJointedBlockSplitsAlongItsJointsIntoPillars) {
   // A block 3.6 long in x, one set of vertical joints striking along +y
   // (planes x = const) 1.2 apart, 0.1 wide, 8× weaker.
@@ -179,8 +154,8 @@ TEST(Geology, AJointedBlockSplitsAlongItsJointsIntoPillars) {
   ASSERT_GE(planes, 2);
   p.stop.time = 0.6;
   const VoxelRock late = weathered(p);
-  EXPECT_EQ(rockComponents(initial), 1);
-  EXPECT_GE(rockComponents(late), planes + 1);
+  EXPECT_EQ(test::voxelComponents(initial), 1u);
+  EXPECT_GE(test::voxelComponents(late), std::size_t(planes + 1));
 }
 
 TEST(Geology, BehindABreachedRindTheRockHollowsUnderALip) {
