@@ -1,6 +1,6 @@
 #include "mesh/bake_attributes.h"
 
-#include "core/colour.h"
+#include "platform/colour.h"
 
 #include <algorithm>
 #include <cmath>
@@ -149,7 +149,7 @@ AssetMeshes sampleAttributes(AssetMeshes meshes, const AttributeSources& sources
   return meshes;
 }
 
-PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake) {
+PaletteParams paletteParams(const VoxelRock& rock, const VertexPaletteParams& bake) {
   PaletteParams p;
   p.palette = bake.palette;
   p.layers = bake.layers;

@@ -36,7 +36,7 @@ struct PaletteParams {
 
 // The preset's palette with the durability range over the rock voxels of
 // `rock` ([0, 1] if there are none).
-PaletteParams paletteParams(const VoxelRock& rock, const BakeParams& bake);
+PaletteParams paletteParams(const VoxelRock& rock, const VertexPaletteParams& bake);
 
 // Fills `colors` (linear RGB) of both surfaces from their attributes:
 //   debug      blue (soft) → cyan → green → yellow → red (durable); purple by colluvium coverage

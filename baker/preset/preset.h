@@ -206,7 +206,7 @@ struct PaletteLayer {
   double durability;  // the layer's durability, > 0
   SrgbColor color;
 };
-struct BakeParams {
+struct VertexPaletteParams {
   Palette palette = Palette::Natural;
   // `natural` palette: colours keyed by durability, interpolated between
   // layers (sorted by durability). Empty: built-in sandstone keyed to the
@@ -321,7 +321,7 @@ struct SimParams {
 
 // A validated preset: the simulation's parameters and those of the stages
 // after it, each stage's in its own struct. Stages take the part they need
-// (the simulation a SimParams, the mesh stage MeshParams and BakeParams, ...).
+// (the simulation a SimParams, the mesh stage MeshParams and VertexPaletteParams, ...).
 struct Preset : SimParams {
   std::filesystem::path file;  // where it was read from
   // Every file it was read from, absolute: the preset first, then the bases it
@@ -330,7 +330,7 @@ struct Preset : SimParams {
   int schema = 1;    // `rockbake:` version
   std::string name;  // [a-z0-9_-]+
   MeshParams mesh;
-  BakeParams bake;
+  VertexPaletteParams bake;  // the `bake:` block: how the meshes' vertex colours are made
   CollisionParams collision;
   std::vector<std::string> exports{"ply", "glb", "vdb", "collision"};  // "obj" on request
   std::vector<std::string> tags;                                       // asset.json's tags, each [a-z0-9_-]+

@@ -614,16 +614,16 @@ const MapSpec<PaletteLayer>& layerSpec() {
   return spec;
 }
 
-const MapSpec<BakeParams>& bakeSpec() {
-  static const Keys<BakeParams> k;
-  static const MapSpec<BakeParams> spec{
+const MapSpec<VertexPaletteParams>& vertexPaletteSpec() {
+  static const Keys<VertexPaletteParams> k;
+  static const MapSpec<VertexPaletteParams> spec{
       {
-          k("palette", &BakeParams::palette, choice<Palette>(), "how vertex colours are made"),
-          k("layers", &BakeParams::layers, listOfMaps<layerSpec>(),
+          k("palette", &VertexPaletteParams::palette, choice<Palette>(), "how vertex colours are made"),
+          k("layers", &VertexPaletteParams::layers, listOfMaps<layerSpec>(),
             "`natural`: colours keyed by durability, interpolated in linear light")
               .range("durability > 0, strictly increasing")
               .defaultIs("`[]`: built-in sandstone"),
-          k("colluvium_color", &BakeParams::colluvium_color, color(), "`natural`: the colluvium's colour")
+          k("colluvium_color", &VertexPaletteParams::colluvium_color, color(), "`natural`: the colluvium's colour")
               .defaultIs("`'#B49A78'` (sandy buff)"),
       },
       {},
@@ -769,7 +769,7 @@ const MapSpec<Preset>& presetSpec() {
               .resumable(),
           k("until", &Preset::stop, mapValue<untilSpec>(), "stop early").leftOutWhenEmpty().resumable(),
           k("mesh", &Preset::mesh, mapValue<meshSpec>(), "extraction, subdivision, detail, LODs"),
-          k("bake", &Preset::bake, mapValue<bakeSpec>(), "palettes: the colours baked into the meshes"),
+          k("bake", &Preset::bake, mapValue<vertexPaletteSpec>(), "palettes: the colours baked into the meshes"),
           k("export", &Preset::exports, exportFormats(),
             "the files a bake writes ([formats.md](formats.md)); LODs come with `glb`, `collision.glb` with "
             "`collision`"),

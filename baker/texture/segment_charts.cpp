@@ -7,8 +7,8 @@
 #include <queue>
 #include <tuple>
 
-#include "core/edge_table.h"
 #include "core/vec3.h"
+#include "geometry/edge_table.h"
 
 namespace rockbake {
 namespace {
@@ -270,7 +270,7 @@ std::uint32_t renumber(std::vector<std::uint32_t>& chart, std::vector<std::uint3
 
 // Merges neighbouring charts while their union keeps every normal within the cone of its
 // mean: smallest chart first, into the neighbour it shares the longest visible seam with.
-void mergeCharts(const Surface& s, std::vector<std::uint32_t>& chart, std::uint32_t count) {
+void mergeWithinNormalCone(const Surface& s, std::vector<std::uint32_t>& chart, std::uint32_t count) {
   std::vector<std::vector<std::uint32_t>> members(count);
   std::vector<Vec3d> sum(count, Vec3d{0, 0, 0});
   std::vector<double> area(count, 0.0);
@@ -387,7 +387,7 @@ std::vector<std::uint32_t> segmentCharts(const SurfaceMesh& mesh) {
     partition(s, seeds, axes, chart);
     fillUnassigned(s, chart, seeds, axes);
   }
-  mergeCharts(s, chart, renumber(chart, seeds, axes));
+  mergeWithinNormalCone(s, chart, renumber(chart, seeds, axes));
   smoothBorders(s, chart, renumber(chart, seeds, axes));
   splitPieces(s, chart);
   return chart;
