@@ -56,8 +56,8 @@ struct Bake {
   // At every cycle and phase boundary (pipeline/bake_phases.h): the studio's progress bar, and a line in
   // the log when a phase after the simulation starts (each can take seconds: the log says what the bake
   // is doing).
-  void progress(std::string_view phase, double within = 0.0) const {
-    if (options.progress) options.progress(bakeProgress(phase, within), std::string(phase));
+  void progress(std::string_view phase, double done = 0.0, double of = 1.0) const {
+    if (options.progress) options.progress(bakeProgress(phase, done, of), std::string(phase));
   }
   void startPhase(std::string_view phase) const {
     progress(phase);
@@ -208,7 +208,7 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   for (int last_percent = -1; !simulation.finished();) {
     const CycleStats& c = cycles.emplace_back(simulation.step());
     bake.checkCancel();
-    bake.progress("simulate", double(c.cycle) / planned);
+    bake.progress("simulate", c.cycle, planned);
     if (const int percent = 100 * c.cycle / planned; percent / 10 != last_percent / 10) {
       spdlog::info("{}: cycle {}/{} ({}%), {} rock, {} exposed, {} decimated", bake.preset.name, c.cycle, planned,
                    percent, c.rock, c.exposed, c.decimated);
@@ -363,7 +363,7 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.folder = bake.dir() / kTextureFolder;
   // The set takes seconds per LOD at the house sizes: the log follows it LOD by LOD.
   request.progress = [&bake](int lod, int size, int lods_done, int lods) {
-    bake.progress("texture", double(lods_done) / std::max(1, lods));
+    bake.progress("texture", lods_done, std::max(1, lods));
     const double in = bake.since_start.elapsed() + bake.options.load_seconds;
     if (lods_done == 0)
       spdlog::info("{}: texture set: {} LOD{} unwrapped ({:.1f} s in)", bake.preset.name, lods, lods == 1 ? "" : "s",

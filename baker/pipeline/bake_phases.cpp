@@ -11,14 +11,9 @@ const BakePhase& bakePhase(std::string_view name) {
   throw std::logic_error("no bake phase is called " + std::string(name) + " (pipeline/bake_phases.h)");
 }
 
-double bakeProgress(std::string_view phase, double within) {
-  double before = 0.0;
-  for (const BakePhase& p : kBakePhases) {
-    if (p.name == phase) return before + p.progress * within;
-    before += p.progress;
-  }
-  bakePhase(phase);  // throws
-  return before;
+double bakeProgress(std::string_view phase, double done, double of) {
+  const BakePhase& p = bakePhase(phase);
+  return p.start + p.share * done / of;
 }
 
 nlohmann::ordered_json bakeTimingsJson(const PhaseTimes& times) {

@@ -52,7 +52,7 @@ ChildProcess::ChildProcess(const ChildOptions& options) : own_group_(options.own
   int in_pipe[2] = {-1, -1}, out_pipe[2] = {-1, -1}, report[2] = {-1, -1};
   const auto fail = [&](ChildStartError::Step step, int e) {
     for (int* fd : {&in_pipe[0], &in_pipe[1], &out_pipe[0], &out_pipe[1], &report[0], &report[1]}) closeFd(*fd);
-    throw ChildStartError(step, e, options.argv[0] + ": " + stepName(step) + ": " + std::strerror(e));
+    throw ChildStartError(step, e, options.argv[0], stepName(step) + ": " + std::strerror(e));
   };
   if ((options.input_pipe && pipe2(in_pipe, O_CLOEXEC) != 0) ||
       (!options.output_file && pipe2(out_pipe, O_CLOEXEC) != 0) || pipe2(report, O_CLOEXEC) != 0)
@@ -73,8 +73,9 @@ ChildProcess::ChildProcess(const ChildOptions& options) : own_group_(options.own
       prctl(PR_SET_PDEATHSIG, SIGKILL);
       if (getppid() != parent) _exit(127);  // the parent ended before the line above
     }
-    const int in = options.input_pipe ? in_pipe[0] : open("/dev/null", O_RDONLY);
-    if (in >= 0) dup2(in, 0);
+    // Close-on-exec like the pipes: the program gets fd 0 (dup2 clears the flag), not a spare.
+    const int in = options.input_pipe ? in_pipe[0] : open("/dev/null", O_RDONLY | O_CLOEXEC);
+    if (in < 0 || dup2(in, 0) < 0) die(ChildStartError::Step::pipe);
     int out = out_pipe[1];
     if (!out_file.empty()) {
       out = open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -102,10 +103,10 @@ ChildProcess::ChildProcess(const ChildOptions& options) : own_group_(options.own
     wait();
     closeInput();
     closeOutput();
-    std::string message = options.argv[0] + ": " + stepName(r.step);
-    if (r.step == ChildStartError::Step::working_dir) message += " " + cwd;
-    if (r.step == ChildStartError::Step::output_file) message += " " + out_file;
-    throw ChildStartError(r.step, r.error, message + ": " + std::strerror(r.error));
+    std::string reason = stepName(r.step);
+    if (r.step == ChildStartError::Step::working_dir) reason += " " + cwd;
+    if (r.step == ChildStartError::Step::output_file) reason += " " + out_file;
+    throw ChildStartError(r.step, r.error, options.argv[0], reason + ": " + std::strerror(r.error));
   }
 }
 

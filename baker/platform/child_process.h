@@ -20,21 +20,23 @@ struct ChildOptions {
   std::vector<std::string> argv;      // argv[0] is looked up on PATH when it has no slash
   std::filesystem::path working_dir;  // empty: this process's
   bool input_pipe = false;            // false: standard input is /dev/null
-  // Standard output and error appended to this file (created, truncated) instead of a pipe.
+  // Standard output and error written to this file (created, or truncated) instead of a pipe.
   std::optional<std::filesystem::path> output_file;
   bool own_group = true;        // its own process group (setpgid)
   bool end_with_parent = true;  // SIGKILL when the starting thread ends (PR_SET_PDEATHSIG)
 };
 
 // The child could not be started: `error` is the errno of the step that failed
-// (ENOENT from exec: the program is not on PATH).
+// (ENOENT from exec: the program is not on PATH); `reason` says which step and why,
+// what() the same after the program's name.
 class ChildStartError : public std::runtime_error {
  public:
   enum class Step { pipe, fork, working_dir, exec, output_file };
-  ChildStartError(Step step, int error, const std::string& message)
-      : std::runtime_error(message), step(step), error(error) {}
+  ChildStartError(Step step, int error, const std::string& program, const std::string& reason)
+      : std::runtime_error(program + ": " + reason), step(step), error(error), reason(reason) {}
   Step step;
   int error;
+  std::string reason;
 };
 
 class ChildProcess {

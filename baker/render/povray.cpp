@@ -92,7 +92,7 @@ PovrayResult runPovrayOnce(const PovrayJob& job) {
                         "(Debian package 'povray'), or bake with --no-render");
     if (e.step == ChildStartError::Step::exec)
       throw PovrayError("cannot run POV-Ray ('" + job.executable + "'): " + std::strerror(e.error));
-    throw PovrayError(std::string("cannot run POV-Ray: ") + e.what());
+    throw PovrayError("cannot run POV-Ray: " + e.reason);
   }
 
   std::string messages;

@@ -64,7 +64,7 @@ std::unique_ptr<ChildProcess> startFfmpeg(const std::vector<std::string>& args) 
                             "ffmpeg (Debian package 'ffmpeg'), or set render.turntable.frames: 0");
     if (e.step == ChildStartError::Step::exec)
       throw MovieError("cannot run FFmpeg ('" + args[0] + "'): " + std::strerror(e.error));
-    throw MovieError(std::string("cannot run FFmpeg: ") + e.what());
+    throw MovieError("cannot run FFmpeg: " + e.reason);
   }
 }
 

@@ -15,20 +15,28 @@
 namespace rockbake {
 namespace {
 
-TEST(BakePhases, SharesOfTheProgressBarAddUpToOne) {
-  double sum = 0.0;
+TEST(BakePhases, EachPhaseStartsWhereTheOneBeforeEndsAndTheBarEndsAtOne) {
+  double end = 0.0;
   for (const BakePhase& p : kBakePhases) {
-    EXPECT_GE(p.progress, 0.0) << p.name;
-    sum += p.progress;
+    EXPECT_GE(p.share, 0.0) << p.name;
+    EXPECT_NEAR(p.start, end, 1e-12) << p.name;
+    end = p.start + p.share;
   }
-  EXPECT_NEAR(sum, 1.0, 1e-12);
-  EXPECT_DOUBLE_EQ(bakeProgress("simulate"), 0.0);
-  EXPECT_DOUBLE_EQ(bakeProgress("simulate", 0.5), 0.35);
-  EXPECT_DOUBLE_EQ(bakeProgress("mesh"), 0.70);
-  EXPECT_DOUBLE_EQ(bakeProgress("texture", 1.0), 0.80);
-  EXPECT_DOUBLE_EQ(bakeProgress("render"), 0.85);
-  EXPECT_DOUBLE_EQ(bakeProgress("total"), 1.0);
+  EXPECT_NEAR(end, 1.0, 1e-12);
+  EXPECT_EQ(bakeProgress("total"), 1.0);
   EXPECT_THROW(bakeProgress("polish"), std::logic_error);
+}
+
+// The positions the studio's bar has always shown, to the bit: start + share · done / of.
+TEST(BakePhases, ProgressIsTheStartPlusTheShareDone) {
+  for (int planned : {1, 3, 5, 7, 100, 613})
+    for (int cycle = 0; cycle <= planned; ++cycle)
+      ASSERT_EQ(bakeProgress("simulate", cycle, planned), 0.7 * cycle / planned) << cycle << " of " << planned;
+  for (int lods = 1; lods <= 8; ++lods)
+    for (int done = 0; done <= lods; ++done) ASSERT_EQ(bakeProgress("texture", done, lods), 0.75 + 0.05 * done / lods);
+  EXPECT_EQ(bakeProgress("mesh"), 0.7);
+  EXPECT_EQ(bakeProgress("export"), 0.8);
+  EXPECT_EQ(bakeProgress("render"), 0.85);
 }
 
 TEST(BakePhases, StagesAreWrittenInTheTablesOrderAndOnlyKnownOnes) {
