@@ -128,13 +128,10 @@ void ChildProcess::closeOutput() {
 
 void ChildProcess::killGroup() {
   if (pid_ <= 0) return;
-  // Once reaped, the pid (and a group named after it) may belong to another process.
-  if (status_) {
-    if (own_group_) kill(-pid_, SIGKILL);  // what it started may outlive it in its group
-    return;
-  }
+  // What it started may outlive it in its group, so the group is signalled even once it has
+  // been reaped; the pid alone only before, when it cannot yet belong to another process.
   if (own_group_) kill(-pid_, SIGKILL);
-  kill(pid_, SIGKILL);
+  if (!status_) kill(pid_, SIGKILL);
 }
 
 int ChildProcess::wait() {
