@@ -93,6 +93,22 @@ struct RowSpans {
   std::vector<float> toDense() const;
 };
 
+// What each rock voxel's surface went through (docs/model.md §14), in cycles: 0 is the blockout
+// before the first cycle, k the k-th cycle (1-based), −1 never. Kept like integrity, on each row's
+// span of the cells ever set, and moved with the rock that falls.
+struct VoxelHistory {
+  RowSpans exposed;      // the cycle a face of the voxel first opened to air
+  RowSpans covered;      // the last cycle it had a face on colluvium
+  RowSpans covered_for;  // how many cycles it had a face on colluvium (fill 0)
+  RowSpans scarred;      // the last cycle rockfall opened its surface (docs/model.md §14)
+  int cycles = 0;        // the cycles recorded: the last one's number
+
+  VoxelHistory() = default;
+  explicit VoxelHistory(const GridLayout& layout)
+      : exposed(layout, -1.f), covered(layout, -1.f), covered_for(layout, 0.f), scarred(layout, -1.f) {}
+  bool empty() const { return exposed.first.empty(); }
+};
+
 struct VoxelRock {
   GridLayout layout;
   std::vector<Material> material;  // cellCount()
@@ -102,6 +118,8 @@ struct VoxelRock {
   // (0..255) of each voxel within the rind's depth of the initial surface.
   // Falls with its rock; keyframes re-read it.
   std::vector<std::uint8_t> rind;
+  // Empty until the simulation starts (it records every cycle from then on).
+  VoxelHistory history;
 
   std::size_t count(Material m) const;
 };

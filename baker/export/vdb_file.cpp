@@ -259,6 +259,25 @@ void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf
                                                                         return true;
                                                                       }),
                                       "durability", transform);
+    // The history (docs/model.md §14), rock voxels only, where it has a record (background −1; 0 for
+    // covered_cycles).
+    const auto historyGrid = [&](const RowSpans& spans, const char* name) {
+      return namedGrid<openvdb::FloatGrid>(denseToTree<openvdb::FloatTree>(layout, spans.fill,
+                                                                           [&](std::size_t cell, float& value) {
+                                                                             if (rock.material[cell] != Material::Rock)
+                                                                               return false;
+                                                                             value = spans[cell];
+                                                                             return value != spans.fill;
+                                                                           }),
+                                           name, transform);
+    };
+    openvdb::GridPtrVec history;
+    if (!rock.history.empty()) {
+      history.push_back(historyGrid(rock.history.exposed, "exposed_at"));
+      history.push_back(historyGrid(rock.history.covered, "covered_until"));
+      history.push_back(historyGrid(rock.history.covered_for, "covered_cycles"));
+      history.push_back(historyGrid(rock.history.scarred, "scarred_at"));
+    }
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
 
@@ -270,7 +289,8 @@ void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf
     metadata.insertMeta("rockbake_version", openvdb::StringMetadata(ROCKBAKE_VERSION));
 #endif
 
-    const openvdb::GridPtrVec grids{rockGrid, colluviumGrid, durabilityGrid, sdfGrid};
+    openvdb::GridPtrVec grids{rockGrid, colluviumGrid, durabilityGrid, sdfGrid};
+    grids.insert(grids.end(), history.begin(), history.end());
     const std::streampos start = out.tellp();
     std::ostream archive_out(nullptr);
     openvdb::io::Stream archive(archive_out);

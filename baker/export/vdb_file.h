@@ -19,6 +19,11 @@ struct SmoothedSdf;  // platform/openvdb_support.h
 //                           mesh stage's smoothed field when `rock_sdf` is given
 //                           (the surface the meshes were made from), else a narrow
 //                           band (3 voxels each side) of the rock occupancy
+// and, when the rock has a history (core/voxel_rock.h; docs/model.md §14), on rock voxels:
+//   FloatGrid "exposed_at"      the cycle a face first opened to air (0: the blockout), background −1
+//   FloatGrid "covered_until"   the last cycle it had a face on colluvium, background −1
+//   FloatGrid "covered_cycles"  how many cycles it had a face on colluvium, background 0
+//   FloatGrid "scarred_at"      the last cycle rockfall opened its surface, background −1
 // Index space is the voxel (x, y, z) of the VoxelRock; every grid shares one
 // transform, mapping index (i, j, k) to layout.center(i, j, k) - pivot, where
 // pivot = footprintPivot(rock) (the meshes' origin, the footprint's centre on

@@ -29,6 +29,7 @@ inline constexpr BakePhase kBakePhases[] = {
     {"simulate_curvature", 0.70, 0.0, ""},  // parts of simulate, summed over the cycles
     {"simulate_colluvium", 0.70, 0.0, ""},
     {"simulate_rockfall", 0.70, 0.0, ""},
+    {"simulate_history", 0.70, 0.0, ""},
     {"mesh", 0.70, 0.05, "meshes and collision hulls"},  // its parts are timed, not the whole
     {"mesh_extract", 0.75, 0.0, ""},
     {"mesh_subdivide", 0.75, 0.0, ""},

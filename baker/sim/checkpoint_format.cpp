@@ -231,6 +231,9 @@ std::string checkpointBytes(const Checkpoint& c) {
   putArray(out, rock.material);
   putSpans(out, rock.integrity);
   putSpans(out, rock.durability);
+  const VoxelHistory history = rock.history.empty() ? VoxelHistory(g) : rock.history;
+  for (const RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred})
+    putSpans(out, *spans);
   put(out, std::uint64_t(rock.rind.size()));  // 0 without a rind, else one byte per cell
   putArray(out, rock.rind);
   put(out, std::uint64_t(c.snapshot.colluvium_columns.size()));
@@ -277,6 +280,10 @@ Checkpoint parseCheckpoint(std::string_view bytes, const fs::path& file) {
         h.corrupt(fmt::format("a cell's material is {}", int(m)));
     c.snapshot.rock.integrity = reader.getSpans(g);
     c.snapshot.rock.durability = reader.getSpans(g);
+    VoxelHistory& history = c.snapshot.rock.history;
+    for (RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred})
+      *spans = reader.getSpans(g);
+    history.cycles = c.snapshot.cycle;
     const auto rind_cells = reader.get<std::uint64_t>();
     if (rind_cells != 0 && rind_cells != cells) h.corrupt("its rind is neither empty nor one per cell of its grid");
     c.snapshot.rock.rind = reader.getArray<std::uint8_t>(rind_cells);
@@ -313,7 +320,7 @@ std::uint64_t checkpointMostBytes(std::string_view header_text, std::uint64_t fi
     const std::uint64_t rows = std::uint64_t(g.ny) * std::uint64_t(g.nz);
     const std::uint64_t spans = sizeof(float) + rows * 8 + cells * sizeof(float);
     const std::uint64_t columns = std::uint64_t(g.nx) * std::uint64_t(g.ny);
-    return before_arrays + 8 + cells + 2 * spans + 8 + cells + 8 + columns * sizeof(std::int64_t) + kDigest;
+    return before_arrays + 8 + cells + 6 * spans + 8 + cells + 8 + columns * sizeof(std::int64_t) + kDigest;
   } catch (const json::exception& e) {
     refuse(file, std::string("the checkpoint's header is unreadable: ") + e.what());
   }

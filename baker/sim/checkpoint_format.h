@@ -4,9 +4,10 @@
 // `rockbake resume` continues one), and the fuzzer (fuzz/fuzz_checkpoint.cpp)
 // feeds this reader bytes directly.
 //
-// Layout (little-endian), version 1:
+// Layout (little-endian), version 2:
 //   "RBKPOINT"  u32 version  u64 header bytes  header (JSON)
 //   u64 cells   materials u8[cells]  integrity, durability: row spans
+//   the history (core/voxel_rock.h): exposed, covered, covered_for, scarred: row spans
 //   u64 rind cells (0 or cells)  rind u8[rind cells]
 //   u64 columns colluvium accumulators i64[columns]
 //   SHA-256 of everything before it, 64 hex digits
@@ -42,7 +43,7 @@ struct Checkpoint {
   nlohmann::ordered_json cycles = nlohmann::ordered_json::array();  // per-cycle statistics up to the checkpoint
 };
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the weathering history
 // The magic, the version and the header's length: what a reader checks first.
 inline constexpr std::size_t kCheckpointPrefixBytes = 8 + 4 + 8;
 

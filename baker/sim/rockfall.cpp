@@ -150,6 +150,14 @@ bool connectedWithin(const GridLayout& g, const VoxelRock& rock, const Cluster& 
   return found >= goals;
 }
 
+// A fallen voxel carries its history (its weathered skin falls with it); the cell it left keeps none.
+void moveHistory(VoxelHistory& history, std::size_t from, std::size_t to) {
+  for (RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred}) {
+    spans->set(to, (*spans)[from]);
+    spans->set(from, spans->fill);
+  }
+}
+
 }  // namespace
 
 RockfallSolver::RockfallSolver(const GridLayout& layout)
@@ -354,6 +362,7 @@ RockfallOutcome RockfallSolver::apply(VoxelRock& rock, RockfallMode mode, std::v
         rock.integrity.set(to, rock.integrity[c]);
         rock.durability.set(to, crumble ? 0.f : rock.durability[c]);
         if (!rock.rind.empty()) rock.rind[to] = crumble ? 0 : rock.rind[c];
+        if (!rock.history.empty()) moveHistory(rock.history, c, to);
         rock.material[c] = Material::Air;
         rock.durability.set(c, 0.f);
         outcome.changed.push_back(c);

@@ -94,7 +94,8 @@ class TrackedCells {
 
   // Re-evaluates the changed cells and, when `with_neighbours`, their face
   // neighbours. A cell listed twice is harmless: its flag already agrees.
-  void update(const std::vector<Cell>& changed, bool with_neighbours) {
+  // `entered`, if given, receives the cells that joined the set, sorted.
+  void update(const std::vector<Cell>& changed, bool with_neighbours, std::vector<Cell>* entered = nullptr) {
     std::vector<Cell> added;
     bool any_removed = false;
     const auto reevaluate = [&](Cell c, const VoxelCoord& p) {
@@ -115,6 +116,7 @@ class TrackedCells {
           reevaluate(Cell(g_.index(p.x + o[0], p.y + o[1], p.z + o[2])), {p.x + o[0], p.y + o[1], p.z + o[2]});
     }
     std::sort(added.begin(), added.end());
+    if (entered) *entered = added;
     if (any_removed) std::erase_if(cells_, [this](Cell c) { return !flag(c); });
     if (!added.empty()) {
       const std::size_t old_size = cells_.size();
@@ -141,6 +143,19 @@ struct ExposedRock {
   const AirField* field;
   bool operator()(int x, int y, int z) const { return isExposed(*rock, *field, x, y, z); }
 };
+// Rock under colluvium: rock with a face on colluvium (docs/model.md §14).
+struct CoveredRock {
+  const VoxelRock* rock;
+  bool operator()(int x, int y, int z) const {
+    const GridLayout& g = rock->layout;
+    if (rock->material[g.index(x, y, z)] != Material::Rock) return false;
+    for (const auto& o : kFaceNeighbours)
+      if (g.contains(x + o[0], y + o[1], z + o[2]) &&
+          rock->material[g.index(x + o[0], y + o[1], z + o[2])] == Material::Colluvium)
+        return true;
+    return false;
+  }
+};
 struct ColluviumCell {
   const VoxelRock* rock;
   bool operator()(int x, int y, int z) const {
@@ -153,6 +168,7 @@ struct CycleCells {
   std::vector<Cell> changed;   // every cell whose material changed this cycle
   std::vector<Cell> vacated;   // cells that stopped being solid: rockfall checks support around them
   std::vector<Cell> unstable;  // colluvium out of rest, for settling
+  std::vector<Cell> fell;      // every cell rockfall emptied or filled
 };
 
 }  // namespace
@@ -186,6 +202,7 @@ struct WeatheringSimulation::State {
         field(rock, std::max(reach, keyframeReach(preset, rock.layout.h))),
         graph(bindBubbleGraph(bubbles, rock.layout, field, estimators)),
         exposed(rock.layout, ExposedRock{&rock, &field}),
+        covered(rock.layout, CoveredRock{&rock}),
         colluvium_count(rock.count(Material::Colluvium)),
         rockfall(rock.layout),
         colluvium_model(rock.layout, preset.colluvium, preset.seed),
@@ -194,6 +211,11 @@ struct WeatheringSimulation::State {
         initial_rock(rock.count(Material::Rock)),
         rock_count(initial_rock) {
     if (preset.colluvium.removal > 0.0) colluvium.emplace(rock.layout, ColluviumCell{&rock});
+    // A fresh run (or a snapshot without history) starts its record: the blockout's surface is cycle 0.
+    if (rock.history.empty()) {
+      rock.history = VoxelHistory(rock.layout);
+      recordHistory({}, {}, 0);
+    }
   }
 
   // Rockfall and colluvium need the ground to fall and pile onto (docs/model.md §1).
@@ -234,7 +256,8 @@ struct WeatheringSimulation::State {
   std::vector<Cell> decimateWeathered();
   void moveColluvium(const std::vector<Cell>& decimated, CycleCells& touched, CycleStats& stats);
   void fallUntilSupported(CycleCells& touched, CycleStats& stats);
-  void updateTracking(const std::vector<Cell>& changed);
+  void updateTracking(const std::vector<Cell>& changed, std::vector<Cell>& newly_exposed);
+  void recordHistory(const std::vector<Cell>& changed, const std::vector<Cell>& fell, int at_cycle);
 
   SimParams preset;  // a copy: the simulation owns its parameters
   VoxelRock rock;
@@ -245,6 +268,8 @@ struct WeatheringSimulation::State {
   AirField field;
   BubbleGraph graph;
   TrackedCells<ExposedRock> exposed;  // rock with a face on air
+  TrackedCells<CoveredRock> covered;  // rock with a face on colluvium
+  std::vector<Cell> newly_exposed;    // cells that joined `exposed` this cycle
   // Every colluvium voxel, in cell order: only removal needs the list, so it
   // is kept only when removal is on; the count is kept always.
   std::optional<TrackedCells<ColluviumCell>> colluvium;
@@ -272,7 +297,11 @@ WeatheringSimulation::WeatheringSimulation(SimulationSnapshot snapshot, SimParam
     return spans.nx == g.nx && spans.first.size() == rows && spans.values.size() == rows;
   };
   if (snapshot.cycle < 0 || snapshot.rock.material.size() != g.cellCount() || !fits(snapshot.rock.integrity) ||
-      !fits(snapshot.rock.durability) || (!snapshot.rock.rind.empty() && snapshot.rock.rind.size() != g.cellCount()))
+      !fits(snapshot.rock.durability) ||
+      (!snapshot.rock.history.empty() &&
+       !(fits(snapshot.rock.history.exposed) && fits(snapshot.rock.history.covered) &&
+         fits(snapshot.rock.history.covered_for) && fits(snapshot.rock.history.scarred))) ||
+      (!snapshot.rock.rind.empty() && snapshot.rock.rind.size() != g.cellCount()))
     throw std::invalid_argument("simulation snapshot: its grids do not match its layout");
   const int cycle = snapshot.cycle;
   state_ = std::make_unique<State>(std::move(snapshot.rock), std::move(params));
@@ -428,6 +457,7 @@ void WeatheringSimulation::State::fallUntilSupported(CycleCells& touched, CycleS
     stats.fallen += fall.fallen;
     stats.crumbled += fall.crumbled;
     touched.changed.insert(touched.changed.end(), fall.changed.begin(), fall.changed.end());
+    touched.fell.insert(touched.fell.end(), fall.changed.begin(), fall.changed.end());
     if (fall.fallen == 0 || !colluviumOn()) break;
     colluvium_model.noteChanged(rock, fall.changed);
     std::vector<Cell> emptied;
@@ -442,13 +472,52 @@ void WeatheringSimulation::State::fallUntilSupported(CycleCells& touched, CycleS
 }
 
 // Brings the air bits and the tracked sets up to date from the changed cells.
-void WeatheringSimulation::State::updateTracking(const std::vector<Cell>& changed) {
+void WeatheringSimulation::State::updateTracking(const std::vector<Cell>& changed, std::vector<Cell>& entered) {
   for (Cell c : changed) {
     const VoxelCoord p = rock.layout.coord(c);
     field.setAir(p.x, p.y, p.z, rock.material[c] == Material::Air);
   }
-  exposed.update(changed, true);
+  exposed.update(changed, true, &entered);
   if (colluvium) colluvium->update(changed, false);
+}
+
+// The history of the state after cycle `at_cycle` (docs/model.md §14), with the rock under
+// colluvium brought up to date from the cells that changed: rock newly exposed to air
+// (all exposed rock at cycle 0), rock under colluvium, and scars, the standing exposed rock within
+// kScarReach voxels of a cell rockfall emptied. Serial and in cell order: the record is the same
+// at any thread count. Costs the cells that changed and the rock under colluvium.
+void WeatheringSimulation::State::recordHistory(const std::vector<Cell>& changed, const std::vector<Cell>& fell,
+                                                int at_cycle) {
+  covered.update(changed, true);
+  VoxelHistory& hist = rock.history;
+  hist.cycles = at_cycle;
+  const float k = float(at_cycle);
+  for (Cell c : at_cycle == 0 ? exposed.cells() : newly_exposed)
+    if (hist.exposed[c] < 0.f) hist.exposed.set(c, k);
+  for (Cell c : covered.cells()) {
+    hist.covered.set(c, k);
+    hist.covered_for.set(c, hist.covered_for[c] + 1.f);
+  }
+  if (fell.empty()) return;
+  constexpr int kScarReach = 2;
+  const GridLayout& g = rock.layout;
+  std::vector<Cell> moved = fell;
+  std::sort(moved.begin(), moved.end());
+  moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+  const auto isMoved = [&](Cell c) { return std::binary_search(moved.begin(), moved.end(), c); };
+  for (Cell c : moved) {
+    if (rock.material[c] != Material::Air) continue;
+    const VoxelCoord p = g.coord(c);
+    for (int z = p.z - kScarReach; z <= p.z + kScarReach; ++z)
+      for (int y = p.y - kScarReach; y <= p.y + kScarReach; ++y)
+        for (int x = p.x - kScarReach; x <= p.x + kScarReach; ++x) {
+          if (!g.contains(x, y, z)) continue;
+          const Cell n = Cell(g.index(x, y, z));
+          if (hist.scarred[n] != k && rock.material[n] == Material::Rock && isExposed(rock, field, x, y, z) &&
+              !isMoved(n))
+            hist.scarred.set(n, k);
+        }
+  }
 }
 
 CycleStats WeatheringSimulation::step() {
@@ -468,7 +537,7 @@ CycleStats WeatheringSimulation::step() {
   stats.exposed = st.exposed.cells().size();
   stats.decimated = decimated.size();
 
-  CycleCells touched{decimated, decimated, {}};
+  CycleCells touched{decimated, decimated, {}, {}};
   phase_start = Clock::now();
   const ColluviumModel::SettleWork settled_before = st.colluvium_model.settleWork();
   if (st.colluviumOn()) st.moveColluvium(decimated, touched, stats);
@@ -481,7 +550,10 @@ CycleStats WeatheringSimulation::step() {
   stats.settle_largest_tiles = settled.largest_tiles - settled_before.largest_tiles;
   stats.settle_two_workers = settled.two_workers - settled_before.two_workers;
 
-  st.updateTracking(touched.changed);
+  st.updateTracking(touched.changed, st.newly_exposed);
+  phase_start = Clock::now();
+  st.recordHistory(touched.changed, touched.fell, st.cycle + 1);
+  stats.times.add("history", secondsSince(phase_start));
 
   stats.cycle = ++st.cycle;
   stats.time = st.cycle * h;

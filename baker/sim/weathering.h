@@ -38,7 +38,7 @@ struct CycleStats {
   // Colluvium settling's work this cycle, and the parts of it that bound
   // what threads can share (ColluviumModel::SettleWork; for benchmarks).
   std::uint64_t settle_work = 0, settle_largest_tiles = 0, settle_two_workers = 0;
-  // Wall-clock seconds of the cycle's phases, "curvature", "colluvium" and "rockfall" (for
+  // Wall-clock seconds of the cycle's phases, "curvature", "colluvium", "rockfall" and "history" (for
   // profiles; not deterministic).
   PhaseTimes times;
 };
