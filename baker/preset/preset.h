@@ -214,6 +214,31 @@ struct VertexPaletteParams {
   std::vector<PaletteLayer> layers;
   std::optional<SrgbColor> colluvium_color;  // default a sandy buff
 };
+// ---- the look (docs/textures.md, "The look"; docs/model.md §14) ----
+// Relief made by a surface process: `amplitude` (world units, >= 0; 0: off) at `spacing` (world
+// units, > 0): the laminae's spacing, the exfoliation sheets' thickness, the pits' size.
+struct LookRelief {
+  double amplitude = 0.0;
+  double spacing = 0.1;
+};
+// What the rock's weathering history makes of its surface, after the simulation. Strengths are
+// 0 (off) … 4, 1 the house's; colours sRGB.
+struct LookParams {
+  static constexpr double kMaxStrength = 4.0;
+  double stain = 1.0;     // streaks where water runs down the fall line and sheds at overhang lips
+  double varnish = 1.0;   // long-exposed rock darkening towards desert varnish or patina
+  double dust = 1.0;      // dust and soil on ledges and in upward-facing hollows
+  double moisture = 1.0;  // a damp band at the foot and in sheltered overhangs
+  double scars = 1.0;     // how much paler fresh rockfall scars and recently exposed faces are
+  double lichen = 0.0;    // lichen on long-exposed, upward-facing rock
+  SrgbColor stain_color{0x5C / 255.0, 0x45 / 255.0, 0x33 / 255.0};    // #5C4533
+  SrgbColor varnish_color{0x33 / 255.0, 0x21 / 255.0, 0x1A / 255.0};  // #33211A
+  SrgbColor dust_color{0xCD / 255.0, 0xB8 / 255.0, 0x9A / 255.0};     // #CDB89A
+  SrgbColor lichen_color{0xA9 / 255.0, 0xAD / 255.0, 0x85 / 255.0};   // #A9AD85
+  LookRelief laminations;  // ridges along the beds, the harder laminae standing out
+  LookRelief exfoliation;  // sheets parallel to the surface on spheroidally weathered rock
+  LookRelief pitting;      // granular pits on cavernously weathered rock
+};
 // ---- texture sets (docs/textures.md) ----
 enum class TextureMap {
   BaseColor,  // <name>_BaseColor[_LOD<k>].png: 8-bit sRGB RGB
@@ -221,6 +246,7 @@ enum class TextureMap {
   Orm,        // <name>_ORM[_LOD<k>].png: 8-bit linear RGB, R occlusion, G roughness, B metal (0)
   Height,     // <name>_Height.exr (LOD0 only): 32-bit float, signed distance LOD0 → source, world units
   Mask,       // <name>_Mask[_LOD<k>].png: 8-bit linear RGBA, durability, colluvium, curvature, altitude
+  History,    // <name>_History[_LOD<k>].png: 8-bit linear RGBA, exposure age, stain, moisture, dust (a look's)
 };
 // How big each LOD's maps are: `halved`, LOD k at size / 2^k (at least 256); `full`, every LOD at size.
 enum class LodMapSize { Halved, Full };
@@ -233,6 +259,7 @@ struct TextureParams {
   // How far each texel's ray looks from the LOD's surface, both ways along its normal,
   // world units; 0: 5 % of the bake source's bounding-box diagonal.
   double cage = 0.0;
+  // The History map is not listed: a bake with a look makes it, one without does not.
   std::vector<TextureMap> maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm, TextureMap::Height,
                                   TextureMap::Mask};
   LodMapSize lod_size = LodMapSize::Halved;
@@ -341,6 +368,9 @@ struct Preset : SimParams {
   std::optional<TextureParams> texture;
   // Stones on the apron (docs/model.md §13); none: no stones. The house style gives them.
   std::optional<ClastParams> clasts;
+  // The look made from the weathering history (docs/textures.md, "The look"); none (left out, or
+  // `look: none`): the palette and its noise alone. The house style gives one.
+  std::optional<LookParams> look;
 
   // Where each key the file gave was written, by key path ("shape.image.path"),
   // so that later stages place their errors too (an unreadable image, a shape

@@ -697,7 +697,8 @@ const MapSpec<TextureParams>& textureSpec() {
             "how far each texel's ray looks for the bake source, both ways along the normal; 0: 5 % of its "
             "bounding-box diagonal")
               .unit(kWorld),
-          k("maps", &TextureParams::maps, textureMaps(), "the maps baked").defaultIs("all five"),
+          k("maps", &TextureParams::maps, textureMaps(), "the maps baked; a bake with a `look` adds its History map")
+              .defaultIs("all five"),
       },
       {},
       "([textures.md](textures.md)). Given, even as `texture: {}`, the bake makes a texture set: every LOD "
@@ -723,6 +724,75 @@ const MapSpec<ClastParams>& clastSpec() {
       "Stones on the debris apron, each a small weathered rock, larger ones further from the foot "
       "([model.md §13](model.md)); exported as instances of shared meshes. Left out, none."};
   return spec;
+}
+
+// ---- the look (docs/textures.md, "The look"; model.md §14) ----
+
+const MapSpec<LookRelief>& reliefSpec() {
+  static const Keys<LookRelief> k;
+  static const MapSpec<LookRelief> spec{{
+      k("amplitude", &LookRelief::amplitude, numberIn(0.0, kMaxWorldLength), "how far the relief stands; 0: none")
+          .unit(kWorld),
+      k("spacing", &LookRelief::spacing, length(), "the laminae's spacing, the sheets' thickness, the pits' size")
+          .unit(kWorld),
+  }};
+  return spec;
+}
+
+const MapSpec<LookParams>& lookColorSpec() {
+  static const Keys<LookParams> k;
+  static const MapSpec<LookParams> spec{{
+      k("stain", &LookParams::stain_color, color(), "the stain water leaves where it runs (sRGB)"),
+      k("varnish", &LookParams::varnish_color, color(), "desert varnish or patina on long-exposed rock (sRGB)"),
+      k("dust", &LookParams::dust_color, color(), "dust and soil on ledges and in hollows (sRGB)"),
+      k("lichen", &LookParams::lichen_color, color(), "lichen on exposed, upward-facing rock (sRGB)"),
+  }};
+  return spec;
+}
+
+const MapSpec<LookParams>& lookSpec() {
+  static const Keys<LookParams> k;
+  const auto strength = [] { return numberIn(0.0, LookParams::kMaxStrength); };
+  static const MapSpec<LookParams> spec{
+      {
+          k("stain", &LookParams::stain, strength(),
+            "streaks where water runs down the fall line and is shed at overhang lips"),
+          k("varnish", &LookParams::varnish, strength(), "long-exposed rock darkening towards varnish or patina"),
+          k("dust", &LookParams::dust, strength(), "dust and soil on ledges and in upward-facing hollows"),
+          k("moisture", &LookParams::moisture, strength(), "a damp band at the foot and in sheltered overhangs"),
+          k("scars", &LookParams::scars, strength(), "how much paler fresh rockfall scars and young faces are"),
+          k("lichen", &LookParams::lichen, strength(), "lichen on long-exposed, upward-facing rock"),
+          k("colors", self, mapValue<lookColorSpec>(), "each effect's colour"),
+          k("laminations", &LookParams::laminations, mapValue<reliefSpec>(),
+            "ridges and partings along the beds, harder laminae standing out"),
+          k("exfoliation", &LookParams::exfoliation, mapValue<reliefSpec>(),
+            "sheets parallel to the surface on spheroidally weathered rock (`spacing`: their thickness)"),
+          k("pitting", &LookParams::pitting, mapValue<reliefSpec>(),
+            "granular pits on cavernously weathered rock (`spacing`: their size)"),
+      },
+      {},
+      "The look made from the rock's weathering history after the simulation "
+      "([textures.md](textures.md), [model.md §14](model.md)). Strengths are 0 (off) … 4, 1 the house's. "
+      "`look: none` (or no `look`) keeps the palette and its noise alone."};
+  return spec;
+}
+
+// `look`: a map read by lookSpec, or `none`.
+Value<std::optional<LookParams>> lookValue() {
+  return {"map or `none`",
+          "",
+          []() -> const MapInfo& { return lookSpec().info; },
+          false,
+          [](const Field& f, std::optional<LookParams>& look, const ReadContext& ctx) {
+            if (f.yaml().IsScalar() && f.yaml().Scalar() == "none") {
+              look.reset();
+              return;
+            }
+            LookParams value;
+            readMap(lookSpec(), f, value, nullptr, ctx);
+            look = std::move(value);
+          },
+          [](const std::optional<LookParams>& look) { return look ? writeMap(lookSpec(), *look) : json("none"); }};
 }
 
 // ---- the preset ----
@@ -780,6 +850,9 @@ const MapSpec<Preset>& presetSpec() {
           k("render", &Preset::render, mapValue<renderSpec>(), "the POV-Ray render"),
           k("texture", &Preset::texture, mapValue<textureSpec>(), "the texture set: UV atlases and baked maps"),
           k("clasts", &Preset::clasts, mapValue<clastSpec>(), "stones on the debris apron"),
+          k("look", &Preset::look, lookValue(),
+            "what the weathering history makes of the surface: stains, "
+            "varnish, dust, moisture, scars, laminations, exfoliation, pitting"),
       },
       {exactlyOne({"time", "cycles"}, "missing 'time' (or 'cycles')", "give either 'time' or 'cycles', not both",
                   "time: T runs ceil(T / voxel size) cycles, the same rock at any resolution")},
