@@ -34,6 +34,14 @@ struct SurfaceMesh {
   std::vector<float> curvature;              // calibrated exposure s, 0..1 (½ flat)
   std::vector<float> altitude;               // normalised altitude, 0 at the ground, 1 at the top of grid.size
   std::vector<std::array<float, 3>> colors;  // linear RGB from the preset's palette
+  // The weathering history at the surface (mesh/bake_attributes.h), empty without a look, each 0..1:
+  // exposure age (0 exposed at the last cycle … 0.98 the initial surface, saturating over a quarter of the run),
+  // rockfall-scar freshness (0 never … 1 opened at the last cycle), burial (the share of the run spent under
+  // colluvium).
+  std::vector<std::array<float, 3>> history;
+  // The look made from it (mesh/surface_look.h), the History map's RGBA, each 0..1: exposure age
+  // (scars are young), stain and varnish, moisture, dust. Empty without a look.
+  std::vector<std::array<float, 4>> look;
   // Texture coordinates, empty until the texture stage unwraps the mesh (texture/uv_atlas.h):
   // [0, 1], glTF's convention (u right, v down, (0, 0) the image's top-left texel corner).
   std::vector<std::array<float, 2>> uvs;
@@ -58,6 +66,8 @@ inline constexpr std::tuple kVertexArrays{
     VertexArray<float>{"curvature", &SurfaceMesh::curvature},
     VertexArray<float>{"altitude", &SurfaceMesh::altitude},
     VertexArray<std::array<float, 3>>{"colors", &SurfaceMesh::colors},
+    VertexArray<std::array<float, 3>>{"history", &SurfaceMesh::history},
+    VertexArray<std::array<float, 4>>{"look", &SurfaceMesh::look},
     VertexArray<std::array<float, 2>>{"uvs", &SurfaceMesh::uvs},
     VertexArray<std::array<float, 4>>{"tangents", &SurfaceMesh::tangents},
 };

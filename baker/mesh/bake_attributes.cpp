@@ -9,6 +9,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/hash.h"
+#include "core/perlin_noise.h"
+
 namespace rockbake {
 namespace {
 
@@ -32,6 +35,17 @@ Rgb srgb(float r, float g, float b) {
   return srgbToSceneLinear({r, g, b});
 }
 
+// A rock voxel's history as fractions of a run of `cycles` cycles (bake_attributes.h).
+std::array<float, 3> voxelHistory(const VoxelHistory& h, std::size_t cell, int cycles) {
+  const float n = float(cycles);
+  const float exposed = h.exposed[cell], scarred = h.scarred[cell];
+  // Weathering never stops, so most of a surface is young: the age saturates over a quarter of
+  // the run, so that rock a few cycles old already shows it (1 − e⁻⁴ for the blockout's surface).
+  return {exposed < 0.0f ? 0.0f : 1.0f - std::exp(-4.0f * std::max(n - exposed, 0.0f) / n),
+          scarred < 0.0f ? 0.0f : std::clamp(1.0f - (n - scarred) / n, 0.0f, 1.0f),
+          std::clamp(h.covered_for[cell] / (n + 1.0f), 0.0f, 1.0f)};
+}
+
 void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluvium) {
   const VoxelRock& rock = *src.rock;
   const GridLayout& g = rock.layout;
@@ -40,6 +54,9 @@ void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluviu
   m.colluvium.assign(n, is_colluvium ? 1.0f : 0.0f);
   m.curvature.assign(n, 0.5f);
   m.altitude.assign(n, 0.0f);
+  const bool history = src.history && !rock.history.empty();
+  const int cycles = std::max(rock.history.cycles, 1);
+  if (history) m.history.assign(n, {0.0f, 0.0f, 0.0f});
   const auto material = [&](int x, int y, int z) {
     if (!g.contains(x, y, z)) return (z < 0 && g.ground) ? Material::Rock : Material::Air;
     return rock.material[g.index(x, y, z)];
@@ -78,6 +95,7 @@ void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluviu
       long e = -1;
       for (int radius = 1; radius <= 4 && e < 0; radius += 3) e = nearest(p, radius, exposed);
       if (e >= 0) m.curvature[v] = std::clamp((*src.exposure)[std::size_t(e)], 0.0f, 1.0f);
+      if (history && e >= 0) m.history[v] = voxelHistory(rock.history, std::size_t(e), cycles);
       // Colluvium coverage: colluvium among the non-rock voxels of the 3×3×3 block.
       const int cx = int(std::floor((p[0] - g.origin[0]) / g.h)), cy = int(std::floor((p[1] - g.origin[1]) / g.h)),
                 cz = int(std::floor((p[2] - g.origin[2]) / g.h));
@@ -94,6 +112,8 @@ void sampleSurface(SurfaceMesh& m, const AttributeSources& src, bool is_colluviu
     }
   });
 }
+
+void tint(SurfaceMesh& m, const PaletteParams& p);
 
 void paint(SurfaceMesh& m, const PaletteParams& p) {
   static const std::array<Rgb, 5> kDebug{Rgb{0, 0, 1}, Rgb{0, 1, 1}, Rgb{0, 1, 0}, Rgb{1, 1, 0}, Rgb{1, 0, 0}};
@@ -139,6 +159,35 @@ void paint(SurfaceMesh& m, const PaletteParams& p) {
     }
     for (float& x : m.colors[v]) x = std::clamp(x, 0.0f, 1.0f);
   }
+  if (p.palette == Palette::Natural && p.look && m.look.size() == m.positions.size()) tint(m, p);
+}
+
+float smoothstep(float lo, float hi, float x) {
+  const float t = std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// The look's tint on every vertex (lookTint), with lichen in patches a few voxels across on
+// long-exposed rock facing up.
+void tint(SurfaceMesh& m, const PaletteParams& p) {
+  const LookParams& look = *p.look;
+  const LookColours colours = lookColours(look);
+  const PerlinNoise patches(counterHash(p.seed, purposeId("look-lichen"), 0, 0));
+  const double scale = 1.0 / (3.0 * p.voxel);
+  const bool normals = m.normals.size() == m.positions.size();
+  tbb::parallel_for(std::size_t(0), m.positions.size(), [&](std::size_t v) {
+    float lichen = 0.0f;
+    if (look.lichen > 0 && normals && m.name != "colluvium") {
+      const auto& q = m.positions[v];
+      const float patch = float(patches.fractal(q[0] * scale, q[1] * scale, q[2] * scale, 2));
+      const float age = m.look[v][0];
+      lichen = std::clamp(
+          float(look.lichen) * smoothstep(0.3f, 0.8f, m.normals[v][2]) * age * age * smoothstep(0.05f, 0.3f, patch),
+          0.0f, 1.0f);
+    }
+    const float scar = m.history.size() == m.positions.size() ? m.history[v][1] : 0.0f;
+    m.colors[v] = lookTint(m.colors[v], m.look[v], scar, lichen, look, colours);
+  });
 }
 
 }  // namespace
@@ -160,6 +209,25 @@ PaletteParams paletteParams(const VoxelRock& rock, const VertexPaletteParams& ba
       lo = std::min(lo, rock.durability[i]), hi = std::max(hi, rock.durability[i]);
   if (lo <= hi) p.durability_min = lo, p.durability_max = hi;
   return p;
+}
+
+LookColours lookColours(const LookParams& look) {
+  const auto linear = [](const SrgbColor& c) { return srgb(float(c[0]), float(c[1]), float(c[2])); };
+  return {linear(look.stain_color), linear(look.varnish_color), linear(look.dust_color), linear(look.lichen_color)};
+}
+
+std::array<float, 3> lookTint(std::array<float, 3> c, const std::array<float, 4>& look, float scar, float lichen,
+                              const LookParams& params, const LookColours& colours) {
+  const float age = std::clamp(look[0], 0.0f, 1.0f), stain = std::clamp(look[1], 0.0f, 1.0f);
+  const float wet = std::clamp(look[2], 0.0f, 1.0f), dust = std::clamp(look[3], 0.0f, 1.0f);
+  const float pale =
+      1.0f + float(params.scars) * (0.15f * (1.0f - age) * (1.0f - age) + 0.3f * std::clamp(scar, 0.0f, 1.0f));
+  for (float& x : c) x *= pale;
+  c = lerp(c, lerp(colours.stain, colours.varnish, age), 0.85f * stain);
+  c = lerp(c, colours.dust, 0.8f * dust);
+  c = lerp(c, colours.lichen, lichen);
+  for (float& x : c) x = std::clamp(x * (1.0f - 0.35f * wet), 0.0f, 1.0f);
+  return c;
 }
 
 AssetMeshes applyPalette(AssetMeshes meshes, const PaletteParams& params) {

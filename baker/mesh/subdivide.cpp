@@ -22,12 +22,12 @@ namespace Sdc = OpenSubdiv::Sdc;
 
 // One vertex's refined data: position and the four primvars.
 struct Primvars {
-  float v[7];
+  float v[10];  // position, durability, colluvium, curvature, altitude, history
   void Clear(void* = nullptr) {
     for (float& x : v) x = 0.0f;
   }
   void AddWithWeight(const Primvars& src, float weight) {
-    for (int i = 0; i < 7; ++i) v[i] += weight * src.v[i];
+    for (int i = 0; i < 10; ++i) v[i] += weight * src.v[i];
   }
 };
 
@@ -110,7 +110,7 @@ std::unique_ptr<Far::TopologyRefiner> refineTopology(const SurfaceMesh& mesh, in
   return refiner;
 }
 
-// The position and the four baked attributes of every vertex of the
+// The position, the four baked attributes and the history of every vertex of the
 // refiner's last level (an absent attribute refines its default).
 std::vector<Primvars> refinePrimvars(const SurfaceMesh& mesh, const Far::TopologyRefiner& refiner) {
   // Primvars of every level, one buffer: level 0 first, each level after the previous.
@@ -120,6 +120,8 @@ std::vector<Primvars> refinePrimvars(const SurfaceMesh& mesh, const Far::Topolog
     buffer[i] = {{p[0], p[1], p[2], mesh.durability.empty() ? 0.0f : mesh.durability[i],
                   mesh.colluvium.empty() ? 0.0f : mesh.colluvium[i], mesh.curvature.empty() ? 0.5f : mesh.curvature[i],
                   mesh.altitude.empty() ? 0.0f : mesh.altitude[i]}};
+    if (!mesh.history.empty())
+      for (int k = 0; k < 3; ++k) buffer[i].v[7 + k] = mesh.history[i][std::size_t(k)];
   }
   Far::PrimvarRefiner primvars(refiner);
   Primvars* src = buffer.data();
@@ -132,7 +134,7 @@ std::vector<Primvars> refinePrimvars(const SurfaceMesh& mesh, const Far::Topolog
 }
 
 // The refiner's last level as a quad mesh with positions and attributes.
-SurfaceMesh refinedMesh(const Far::TopologyRefiner& refiner, const std::vector<Primvars>& vertices) {
+SurfaceMesh refinedMesh(const Far::TopologyRefiner& refiner, const std::vector<Primvars>& vertices, bool history) {
   const Far::TopologyLevel& last = refiner.GetLevel(refiner.GetMaxLevel());
   const std::size_t n = std::size_t(last.GetNumVertices());
   SurfaceMesh out;
@@ -145,6 +147,10 @@ SurfaceMesh refinedMesh(const Far::TopologyRefiner& refiner, const std::vector<P
     const float* v = vertices[i].v;
     out.positions[i] = {v[0], v[1], v[2]};
     out.durability[i] = v[3], out.colluvium[i] = v[4], out.curvature[i] = v[5], out.altitude[i] = v[6];
+  }
+  if (history) {
+    out.history.resize(n);
+    for (std::size_t i = 0; i < n; ++i) out.history[i] = {vertices[i].v[7], vertices[i].v[8], vertices[i].v[9]};
   }
   out.quads.reserve(std::size_t(last.GetNumFaces()));
   for (int f = 0; f < last.GetNumFaces(); ++f) {
@@ -189,9 +195,10 @@ SurfaceMesh subdivideSurface(const SurfaceMesh& mesh, const SubdivideParams& par
     out.colluvium = mesh.colluvium;
     out.curvature = mesh.curvature;
     out.altitude = mesh.altitude;
+    out.history = mesh.history;
   } else {
     const std::unique_ptr<Far::TopologyRefiner> refiner = refineTopology(mesh, params.levels);
-    out = refinedMesh(*refiner, refinePrimvars(mesh, *refiner));
+    out = refinedMesh(*refiner, refinePrimvars(mesh, *refiner), !mesh.history.empty());
   }
   out.name = mesh.name;
   splitQuads(out);

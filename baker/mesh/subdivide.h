@@ -1,6 +1,6 @@
 // Subdivision (docs/meshes.md): OpenSubdiv Far, Catmull-Clark on the quad-dominant
 // extraction output (triangles and quads together), uniform refinement.
-// Per-vertex primvars (durability, colluvium, curvature, altitude) are refined
+// Per-vertex primvars (durability, colluvium, curvature, altitude, and history when present) are refined
 // with Far::PrimvarRefiner alongside the positions, so each refined value is a
 // convex combination of the input values and stays within their range.
 // Edges where a face lying on the ground plane (every vertex at z = 0) meets
@@ -18,7 +18,7 @@ struct SubdivideParams {
 
 // Returns a triangle-only mesh (each refined quad split along its shorter
 // diagonal) with area-weighted unit vertex normals. Of the per-vertex arrays
-// (core/surface_mesh.h), positions and the four baked attributes are refined;
+// (core/surface_mesh.h), positions, the four baked attributes and the history are refined;
 // colours are dropped (apply the palette afterwards), as is any array added
 // after them. An empty mesh stays empty.
 // Throws std::invalid_argument if levels is outside 0..3 or the mesh is not a

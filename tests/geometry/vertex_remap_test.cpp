@@ -75,7 +75,7 @@ TEST(VertexRemap, EveryArrayIsListedOnceWithItsName) {
   std::vector<std::string> names;
   forEachVertexArray(m, [&](const char* name, const auto&) { names.push_back(name); });
   EXPECT_EQ(names, (std::vector<std::string>{"positions", "normals", "durability", "colluvium", "curvature", "altitude",
-                                             "colors", "uvs", "tangents"}));
+                                             "colors", "history", "look", "uvs", "tangents"}));
 }
 
 TEST(VertexRemap, GatherCarriesEveryArray) {
