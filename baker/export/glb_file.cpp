@@ -122,6 +122,19 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
   prim.attributes["_COLLUVIUM"] = addFloatAccessor(model, m.colluvium, 1, false);
   prim.attributes["_CURVATURE"] = addFloatAccessor(model, m.curvature, 1, false);
   prim.attributes["_ALTITUDE"] = addFloatAccessor(model, m.altitude, 1, false);
+  // The look (mesh/surface_look.h), where the bake has one: the History map's RGBA per vertex.
+  if (m.look.size() == n && n > 0) {
+    std::vector<float> look;
+    look.reserve(4 * n);
+    for (const auto& v : m.look) look.insert(look.end(), v.begin(), v.end());
+    prim.attributes["_HISTORY"] = addFloatAccessor(model, look, 4, false);
+  }
+  if (m.history.size() == n && n > 0) {
+    std::vector<float> scar;
+    scar.reserve(n);
+    for (const auto& v : m.history) scar.push_back(v[1]);
+    prim.attributes["_SCAR"] = addFloatAccessor(model, scar, 1, false);
+  }
 
   tinygltf::Accessor indices;
   indices.bufferView = addBufferView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),

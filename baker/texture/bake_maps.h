@@ -11,9 +11,10 @@
 //   base colour RGB 8-bit sRGB: the source's interpolated palette colour times the rock's
 //               look at the hit (rock_look.h)
 //   ORM         RGB 8-bit linear: R occlusion (ambient_occlusion.h, per LOD vertex, interpolated),
-//               G roughness (rock_look.h), B metal 0
+//               G roughness (rock_look.h; weatheredRoughness where the source has a look), B metal 0
 //   height      1 channel float: the signed distance from the LOD to the source along the
 //               LOD's normal, world units (positive outwards); LOD0's is the film displacement
+//   history     RGBA 8-bit linear: the look's exposure age, stain and varnish, moisture, dust
 //   mask        RGBA 8-bit linear: durability normalised over the asset's range (0 on
 //               colluvium), colluvium coverage, curvature (exposure, ½ flat): COLOR_1's; and the
 //               ground contact (GroundMask; COLOR_1's alpha is the altitude)
@@ -79,5 +80,8 @@ GroundMask groundMask(const AssetMeshes& source, std::optional<double> ground, d
 
 // R durability (normalised), G colluvium coverage, B curvature, A ground contact (GroundMask).
 TextureImage<std::uint8_t> bakeMask(const LodBake& bake, const RockLook& look, const GroundMask& ground);
+// The source's look (SurfaceMesh::look; mesh/surface_look.h): R exposure age, G stain and varnish,
+// B moisture, A dust, each 0..1, linear. Texels whose mesh has no look are 0.
+TextureImage<std::uint8_t> bakeHistory(const LodBake& bake);
 
 }  // namespace rockbake

@@ -19,7 +19,8 @@ TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::ve
     const float durability = attributes ? float(at.scalar(m.durability)) : 0.0f;
     const std::vector<float>& open = occlusion[std::size_t(s.surface)];
     out[0] = byte(open.size() == s.lod.mesh->positions.size() ? s.lod.scalar(open) : 1.0);
-    out[1] = byte(look.roughness(at.vector(m.positions), durability, cover));
+    const float roughness = look.roughness(at.vector(m.positions), durability, cover);
+    out[1] = byte(m.look.size() == m.positions.size() ? weatheredRoughness(roughness, quadAt(at, m.look)) : roughness);
     out[2] = 0;
   });
 }

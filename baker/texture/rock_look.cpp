@@ -55,4 +55,13 @@ float RockLook::roughness(const std::array<double, 3>& p, float durability, floa
   return float(std::clamp((1.0 - c) * rock + c * 0.95, 0.0, 1.0));
 }
 
+float weatheredRoughness(float roughness, const std::array<double, 4>& look) {
+  const auto towards = [](double from, double to, double t) { return from + (to - from) * std::clamp(t, 0.0, 1.0); };
+  double r = roughness;
+  r = towards(r, 0.55, 0.5 * look[1]);
+  r = towards(r, 0.35, 0.6 * look[2]);
+  r = towards(r, 0.97, look[3]);
+  return float(r);
+}
+
 }  // namespace rockbake

@@ -42,4 +42,9 @@ class RockLook {
   float durability_min_, durability_span_;
 };
 
+// Roughness where the surface has a look (mesh/surface_look.h; RGBA age, stain and varnish,
+// moisture, dust): varnish is smoother (towards 0.55 by half the stain), wet rock smoother still
+// (towards 0.35 by 0.6 of the moisture), dust rough (towards 0.97 by the dust).
+float weatheredRoughness(float roughness, const std::array<double, 4>& look);
+
 }  // namespace rockbake

@@ -33,6 +33,15 @@ struct SurfacePoint {
   }
 };
 
+// The interpolated value of a per-vertex array of four (SurfaceMesh::look).
+template <class A>
+std::array<double, 4> quadAt(const SurfacePoint& at, const std::vector<A>& values) {
+  std::array<double, 4> r{0, 0, 0, 0};
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t k = 0; k < 4; ++k) r[k] += at.weight[i] * values[at.vertex[i]][k];
+  return r;
+}
+
 struct TexelSample {
   int surface = 0;   // 0 rock, 1 colluvium
   SurfacePoint lod;  // the texel's centre on the LOD

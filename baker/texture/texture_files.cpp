@@ -121,6 +121,8 @@ std::string textureFileName(const std::string& name, TextureMap map, int lod) {
       return name + "_Height" + (lod >= 0 ? suffix : "") + ".exr";
     case TextureMap::Mask:
       return name + "_Mask" + (lod >= 0 ? suffix : "") + ".png";
+    case TextureMap::History:
+      return name + "_History" + (lod >= 0 ? suffix : "") + ".png";
   }
   return name;
 }

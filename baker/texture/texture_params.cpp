@@ -24,7 +24,8 @@ bool wantsMap(const TextureParams& params, TextureMap map) {
 }
 
 std::string mapName(TextureMap map) {
-  return schema::nameOf(map);
+  // The History map is a look's, never listed in texture.maps, so the schema does not name it.
+  return map == TextureMap::History ? "history" : schema::nameOf(map);
 }
 
 int lodMapSize(const TextureParams& params, int lod) {

@@ -113,6 +113,7 @@ const MapKind kMapKinds[] = {
     {TextureMap::Height, [](const LodBake& b, const MapInputs&) { return bakeHeight(b); }, 1, 32, "linear", true},
     {TextureMap::Mask, [](const LodBake& b, const MapInputs& in) { return bakeMask(b, in.look, in.contact); }, 4, 8,
      "linear", false},
+    {TextureMap::History, [](const LodBake& b, const MapInputs&) { return bakeHistory(b); }, 4, 8, "linear", false},
 };
 
 const MapKind& mapKind(TextureMap map) {
@@ -162,7 +163,9 @@ void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, con
   const std::string lod = "lod" + std::to_string(k);
   const bool banded = request.whole_map_size <= 0 || size > request.whole_map_size;
   const int rows = banded ? (request.band_rows > 0 ? request.band_rows : kBandRows) : size;
-  for (TextureMap map : request.params.maps) {
+  std::vector<TextureMap> maps = request.params.maps;
+  if (!bake.source->rock.look.empty()) maps.push_back(TextureMap::History);  // a look's own map
+  for (TextureMap map : maps) {
     const MapKind& kind = mapKind(map);
     if (kind.lod0_only && k > 0) continue;
     step(lod + " " + mapName(map));  // the time until here: the map's own is in its file's step

@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
@@ -278,13 +279,15 @@ SurfaceMesh splitAlongSeams(const SurfaceMesh& mesh, const std::vector<const Fla
     to.resize(source.size());
     for (std::size_t i = 0; i < source.size(); ++i) to[i] = from[source[i]];
   };
-  carry(mesh.positions, out.positions);
-  carry(mesh.normals, out.normals);
-  carry(mesh.durability, out.durability);
-  carry(mesh.colluvium, out.colluvium);
-  carry(mesh.curvature, out.curvature);
-  carry(mesh.altitude, out.altitude);
-  carry(mesh.colors, out.colors);
+  // Every per-vertex array but the atlas's own (uvs, made above; tangents, made from them later).
+  std::apply(
+      [&](const auto&... array) {
+        ((std::string_view(array.name) == "uvs" || std::string_view(array.name) == "tangents"
+              ? void()
+              : carry(mesh.*(array.member), out.*(array.member))),
+         ...);
+      },
+      kVertexArrays);
   return out;
 }
 

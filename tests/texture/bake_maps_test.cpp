@@ -10,8 +10,9 @@
 #include <csetjmp>
 #include <cstring>
 
-#include "platform/colour.h"
+#include "exr_image.h"
 #include "mesh/simplify_lods.h"
+#include "platform/colour.h"
 #include "texture/ambient_occlusion.h"
 #include "texture/bake_maps.h"
 #include "texture/dilate_texels.h"
@@ -22,7 +23,6 @@
 #include "texture/texture_set.h"
 #include "texture/trace_texels.h"
 #include "texture/uv_atlas.h"
-#include "exr_image.h"
 #include "texture_fixtures.h"
 
 namespace rockbake {
@@ -386,8 +386,8 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
     request.folder = two.path();
     sets[1] = bakeTextureSet(lods, source, request);
   }
-  // LOD0: five maps; LOD1: all but the height.
-  ASSERT_EQ(sets[0].files.size(), 9u);
+  // LOD0: five maps and the History map (goblin has a look); LOD1: all but the height.
+  ASSERT_EQ(sets[0].files.size(), 11u);
   for (const TextureFile& f : sets[0].files) {
     EXPECT_EQ(test::readBytes(one.path() / f.file), test::readBytes(two.path() / f.file)) << f.file;
   }
@@ -441,7 +441,7 @@ TEST(TextureSet, BandedMapsEqualWholeMapsAtAnyBandHeight) {
     test::TempDir whole;
     request.folder = whole.path();
     const TextureSet reference = bakeTextureSet(lods, source, request);
-    ASSERT_EQ(reference.files.size(), 9u);
+    ASSERT_EQ(reference.files.size(), 11u);  // LOD0: five maps and the look's History; LOD1: all but the height
     for (int rows : heights) {
       test::TempDir banded;
       request.folder = banded.path();
