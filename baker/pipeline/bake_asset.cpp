@@ -222,7 +222,7 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   start.simulation.reset();  // its working state (air field, bit planes, work lists) is not needed past here
   bake.timings.add("simulate", bake.clock.lap());
   PhaseTimes parts;  // listed even when no cycle ran (a resume at the end)
-  for (const char* part : {"curvature", "colluvium", "rockfall"}) parts.add(part, 0.0);
+  for (const char* part : {"curvature", "colluvium", "rockfall", "history"}) parts.add(part, 0.0);
   for (const auto& c : cycles) parts.add(c.times);
   bake.timings.add(parts, "simulate_");
   weathered.cycles = concatenated(std::move(start.cycles_before), cyclesToJson(cycles));
@@ -230,6 +230,8 @@ Weathered simulate(Bake& bake, SimulationStart start) {
   weathered.final_rock = weathered.rock.count(Material::Rock);
   weathered.colluvium = weathered.rock.count(Material::Colluvium);
   weathered.rock.integrity = RowSpans();  // its memory goes before the VDB and meshes
+  // Only a look reads the history: without one, rock.vdb has no history grids (as before looks).
+  if (!bake.preset.look) weathered.rock.history = VoxelHistory();
   return weathered;
 }
 

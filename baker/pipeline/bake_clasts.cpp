@@ -77,6 +77,9 @@ void makeShape(const VoxelRock& parent, const Preset& preset, const PaletteParam
   static_cast<SimParams&>(meshing) = sp;
   meshing.mesh.lods = {double(kClastShapeTriangles)};
   meshing.exports = {"glb"};
+  // A stone's few cycles leave no history to speak of, and the look's lengths are the asset's:
+  // stones keep the palette's look (docs/model.md §13).
+  meshing.look.reset();
   MeshStageResult r = bakeMeshes(stone, meshing, true);
   AssetMeshes lod = applyPalette(std::move(r.lods.at(0)), palette);
   AssetMeshes fine = applyPalette(std::move(r.bake_source), palette);

@@ -20,9 +20,40 @@
 #include "mesh/simplify_lods.h"
 #include "mesh/subdivide.h"
 #include "mesh/surface_detail.h"
+#include "mesh/surface_look.h"
+#include "sim/durability.h"
+#include "sim/family.h"
 #include "sim/weathering.h"
 
 namespace rockbake {
+
+namespace {
+
+// The surface detail of mesh.detail and the look's processes (mesh/surface_detail.h): the laminae
+// lie along the simulation's own beds.
+void displaceRock(SurfaceMesh& rock_mesh, const VoxelRock& rock, const Preset& preset, const PaletteParams& palette) {
+  DetailParams detail{preset.mesh.detail.value_or(NoiseParams{0.0, 1.0, 1}),
+                      preset.seed,
+                      palette.durability_min,
+                      palette.durability_max,
+                      rock.layout.ground,
+                      {}};
+  std::optional<Geology> geology;
+  if (preset.look) {
+    detail.processes.laminations = preset.look->laminations;
+    detail.processes.exfoliation = preset.look->exfoliation;
+    detail.processes.pitting = preset.look->pitting;
+    detail.processes.retreat = std::max(rock.history.cycles, 1) * rock.layout.h;
+    const Vec3d domain = simulationDomain(preset);
+    geology.emplace(individualDurability(preset), domain, preset.seed);
+    detail.processes.bed_position = [&geology, height = domain[2]](const Vec3d& p) {
+      return geology->bedAltitude(p) * height;
+    };
+  }
+  if (detail.noise.amplitude > 0 || detail.processes.any()) displaceSurface(rock_mesh, detail);
+}
+
+}  // namespace
 
 bool exportsFormat(const Preset& preset, const std::string& format) {
   return std::find(preset.exports.begin(), preset.exports.end(), format) != preset.exports.end();
@@ -36,7 +67,7 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   r.times.add("extract", clock.lap());
 
   const std::vector<float> exposure = exposureField(rock, bubbles ? *bubbles : preset.bubbles);
-  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure});
+  meshes = sampleAttributes(std::move(meshes), {&rock, &exposure, preset.look.has_value()});
   r.times.add("attributes", clock.lap());
 
   const GridLayout& g = rock.layout;
@@ -77,10 +108,15 @@ MeshStageResult buildMeshes(const VoxelRock& rock, const Preset& preset, bool ke
   }
   r.times.add("subdivide", clock.lap());
 
-  const PaletteParams palette = paletteParams(rock, preset.bake);
-  if (preset.mesh.detail)
-    displaceSurface(meshes.rock,
-                    {*preset.mesh.detail, preset.seed, palette.durability_min, palette.durability_max, g.ground});
+  PaletteParams palette = paletteParams(rock, preset.bake);
+  displaceRock(meshes.rock, rock, preset, palette);
+  if (preset.look) {
+    const LookParams& look = *preset.look;
+    makeSurfaceLook(meshes, {look.stain, look.varnish, look.moisture, look.dust, &rock});
+    palette.look = look;
+    palette.seed = preset.seed;
+    palette.voxel = g.h;
+  }
   updateBounds(meshes);
   meshes.durability_range = {palette.durability_min, palette.durability_max};
   meshes = applyPalette(std::move(meshes), palette);

