@@ -152,20 +152,48 @@ class Viewer {
     this.controls = new OrbitControls(this.camera, canvas);
     this.controls.addEventListener('change', () => this.draw());
     this.model = null;
+    this.history = null;       // the History map of the LOD shown (a texture), or null
+    this.textures = new Map(); // History maps by URL: promises of textures
     this.channel = 'lit';
     this.wireframe = false;
     this.framed = false;
   }
 
-  async load(url) {
-    const gltf = await new GLTFLoader().loadAsync(url);
+  // Shows the GLB at `url`; `history`: the URL of that LOD's History map, or null.
+  async load(url, history = null) {
+    const [gltf, map] = await Promise.all([
+      new GLTFLoader().loadAsync(url),
+      history ? this.historyTexture(history).catch((e) => {
+        message(`cannot load ${history} (${e.message}): the history channels show the vertex attribute`);
+        return null;
+      }) : null,
+    ]);
     if (this.model) this.scene.remove(this.model);
     this.model = gltf.scene;
+    this.history = map;
     this.model.traverse((o) => { if (o.isMesh) o.userData.original = o.material; });
     this.scene.add(this.model);
     if (!this.framed) this.frame();
     this.applyChannel();
     this.canvas.dataset.drawn = url;
+  }
+
+  // The History map at `url` as a texture: linear RGBA data, read as stored (not premultiplied, no
+  // colour conversion: where A, the dust, is 0 the RGB must survive), glTF's uv origin (no flip).
+  historyTexture(url) {
+    if (!this.textures.has(url)) {
+      const loader = new THREE.ImageBitmapLoader().setOptions({ premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+      const promise = loader.loadAsync(url).then((bitmap) => {
+        const texture = new THREE.Texture(bitmap);
+        texture.name = url;
+        texture.flipY = false;
+        texture.needsUpdate = true;
+        return texture;
+      });
+      promise.catch(() => this.textures.delete(url));
+      this.textures.set(url, promise);
+    }
+    return this.textures.get(url);
   }
 
   frame() {
@@ -184,6 +212,11 @@ class Viewer {
 
   // The material a channel shows: the glTF material's maps when it has them
   // (textures/), else the vertex colours (COLOR_0) and the packed mask (COLOR_1).
+  // history / history-dust: the look's History (docs/textures.md) on the meshes
+  // that have one (`_HISTORY`), unlit: the LOD's History map through TEXCOORD_0
+  // on the rock and colluvium surfaces where the LOD has one, else the
+  // `_HISTORY` attribute; RGB (age, stain and varnish, moisture) or A (dust) as
+  // grey. Black without a look, as mask without COLOR_1.
   channelMaterial(mesh) {
     const m = mesh.userData.original;
     const geometry = mesh.geometry;
@@ -213,6 +246,32 @@ class Viewer {
             .replace('#include <common>', '#include <common>\nattribute vec3 maskColor;')
             .replace('#include <color_vertex>', 'vColor = maskColor;');
         };
+        return material;
+      }
+      case 'history':
+      case 'history-dust': {
+        const swizzle = this.channel === 'history' ? 'rgb' : 'aaa';
+        const history = geometry.attributes._history;  // GLTFLoader's name for _HISTORY
+        if (!history) return new THREE.MeshBasicMaterial({ color: 0x000000, wireframe });
+        // The map is the rock's and the colluvium's (their materials' names, docs/formats.md);
+        // the stones have their own uvs and their own _HISTORY.
+        if (this.history && geometry.attributes.uv && (m.name === 'rock' || m.name === 'colluvium')) {
+          const material = new THREE.MeshBasicMaterial({ map: this.history, wireframe });
+          material.onBeforeCompile = (shader) => {
+            shader.fragmentShader = shader.fragmentShader
+              .replace('#include <map_fragment>', `diffuseColor.rgb *= texture2D( map, vMapUv ).${swizzle};`);
+          };
+          material.customProgramCacheKey = () => `history-map-${swizzle}`;
+          return material;
+        }
+        if (!geometry.attributes.historyRgba) geometry.setAttribute('historyRgba', history);
+        const material = new THREE.MeshBasicMaterial({ vertexColors: true, wireframe });
+        material.onBeforeCompile = (shader) => {
+          shader.vertexShader = shader.vertexShader
+            .replace('#include <common>', '#include <common>\nattribute vec4 historyRgba;')
+            .replace('#include <color_vertex>', `vColor = historyRgba.${swizzle};`);
+        };
+        material.customProgramCacheKey = () => `history-vertex-${swizzle}`;
         return material;
       }
       default: {
@@ -248,6 +307,15 @@ class Viewer {
 }
 
 let assetViewer = null;
+
+// The URL of the History map (asset.json's maps, type history) of the LOD whose GLB is at
+// `glb` (a files.lods link), or null: the bake had no look, or no texture set.
+function historyMapOf(d, glb) {
+  const lod = (d.files?.lods || []).find((l) => l.file === glb);
+  const maps = Array.isArray(d.asset?.maps) ? d.asset.maps : [];
+  const map = lod && maps.find((m) => m && m.type === 'history' && m.lod === lod.level && typeof m.file === 'string');
+  return map ? `/files/${d.name}/${map.file}` : null;
+}
 
 function statRows(d) {
   const rows = [['status', d.status], ['preset', d.preset], ['wedge', d.wedge], ['seed', d.seed],
@@ -287,7 +355,10 @@ async function openAsset(name) {
   $('asset-view').showModal();
   if (!assetViewer) assetViewer = new Viewer($('a-canvas'));
   assetViewer.framed = false;
-  if (lod.value) await assetViewer.load(lod.value).catch((e) => message(`cannot show ${lod.value}: ${e.message}`));
+  if (lod.value) {
+    await assetViewer.load(lod.value, historyMapOf(d, lod.value))
+      .catch((e) => message(`cannot show ${lod.value}: ${e.message}`));
+  }
 }
 
 async function saveVerdict(status, note) {
@@ -353,7 +424,10 @@ $('sort').addEventListener('change', drawGrid);
 $('compare').addEventListener('click', () => openCompare().catch((e) => message(e.message)));
 $('a-close').addEventListener('click', () => { $('a-movie').pause(); $('asset-view').close(); });
 $('c-close').addEventListener('click', () => $('compare-view').close());
-$('a-lod').addEventListener('change', () => assetViewer.load($('a-lod').value));
+$('a-lod').addEventListener('change', () => {
+  const glb = $('a-lod').value;
+  assetViewer.load(glb, historyMapOf(state.current, glb)).catch((e) => message(`cannot show ${glb}: ${e.message}`));
+});
 $('a-wire').addEventListener('change', () => { assetViewer.wireframe = $('a-wire').checked; assetViewer.applyChannel(); });
 $('a-channel').addEventListener('change', () => { assetViewer.channel = $('a-channel').value; assetViewer.applyChannel(); });
 for (const b of $('a-verdict').querySelectorAll('button'))
