@@ -5,6 +5,8 @@
 # render; goblin at the house settings without, then with, its still.
 # Usage: bench/same_outputs.sh OLD_ROCKBAKE OLD_DATA_DIR NEW_ROCKBAKE NEW_DATA_DIR OUT
 #   a DATA_DIR holds that build's presets/ and render_templates/ (ROCKBAKE_DATA_DIR).
+#   NEW_ARGS (environment, optional): more arguments for the new build's bakes, e.g.
+#   NEW_ARGS="--set look=none" to compare a build with looks, turned off, against one without.
 set -uo pipefail
 [ $# -eq 5 ] || { echo "usage: $0 OLD_ROCKBAKE OLD_DATA_DIR NEW_ROCKBAKE NEW_DATA_DIR OUT" >&2; exit 2; }
 out=$5
@@ -14,7 +16,9 @@ bake() {  # old|new PRESET_NAME SUBFOLDER ARGS...
   shift 3
   exe=$([ "$which" = old ] && echo "$OLD" || echo "$NEW")
   data=$([ "$which" = old ] && echo "$OLD_DATA" || echo "$NEW_DATA")
-  ROCKBAKE_DATA_DIR="$data" "$exe" bake "$data/presets/$name.yaml" -o "$out/$which/$sub" "$@" >/dev/null 2>"$out/$which.$sub.$name.log" ||
+  local extra=()
+  [ "$which" = new ] && [ -n "${NEW_ARGS:-}" ] && read -r -a extra <<< "$NEW_ARGS"
+  ROCKBAKE_DATA_DIR="$data" "$exe" bake "$data/presets/$name.yaml" -o "$out/$which/$sub" "$@" "${extra[@]}" >/dev/null 2>"$out/$which.$sub.$name.log" ||
     echo "$which: $name ($sub) failed: $out/$which.$sub.$name.log"
 }
 OLD=$1 OLD_DATA=$2 NEW=$3 NEW_DATA=$4
