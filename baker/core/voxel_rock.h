@@ -107,6 +107,9 @@ struct VoxelHistory {
   explicit VoxelHistory(const GridLayout& layout)
       : exposed(layout, -1.f), covered(layout, -1.f), covered_for(layout, 0.f), scarred(layout, -1.f) {}
   bool empty() const { return exposed.first.empty(); }
+  // The four grids in one order, for what treats them alike (moving, checking, storing them).
+  std::array<RowSpans*, 4> grids() { return {&exposed, &covered, &covered_for, &scarred}; }
+  std::array<const RowSpans*, 4> grids() const { return {&exposed, &covered, &covered_for, &scarred}; }
 };
 
 struct VoxelRock {

@@ -232,8 +232,7 @@ std::string checkpointBytes(const Checkpoint& c) {
   putSpans(out, rock.integrity);
   putSpans(out, rock.durability);
   const VoxelHistory history = rock.history.empty() ? VoxelHistory(g) : rock.history;
-  for (const RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred})
-    putSpans(out, *spans);
+  for (const RowSpans* spans : history.grids()) putSpans(out, *spans);
   put(out, std::uint64_t(rock.rind.size()));  // 0 without a rind, else one byte per cell
   putArray(out, rock.rind);
   put(out, std::uint64_t(c.snapshot.colluvium_columns.size()));
@@ -281,8 +280,7 @@ Checkpoint parseCheckpoint(std::string_view bytes, const fs::path& file) {
     c.snapshot.rock.integrity = reader.getSpans(g);
     c.snapshot.rock.durability = reader.getSpans(g);
     VoxelHistory& history = c.snapshot.rock.history;
-    for (RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred})
-      *spans = reader.getSpans(g);
+    for (RowSpans* spans : history.grids()) *spans = reader.getSpans(g);
     history.cycles = c.snapshot.cycle;
     const auto rind_cells = reader.get<std::uint64_t>();
     if (rind_cells != 0 && rind_cells != cells) h.corrupt("its rind is neither empty nor one per cell of its grid");

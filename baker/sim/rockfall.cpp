@@ -152,7 +152,7 @@ bool connectedWithin(const GridLayout& g, const VoxelRock& rock, const Cluster& 
 
 // A fallen voxel carries its history (its weathered skin falls with it); the cell it left keeps none.
 void moveHistory(VoxelHistory& history, std::size_t from, std::size_t to) {
-  for (RowSpans* spans : {&history.exposed, &history.covered, &history.covered_for, &history.scarred}) {
+  for (RowSpans* spans : history.grids()) {
     spans->set(to, (*spans)[from]);
     spans->set(from, spans->fill);
   }

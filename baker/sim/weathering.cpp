@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -296,11 +297,12 @@ WeatheringSimulation::WeatheringSimulation(SimulationSnapshot snapshot, SimParam
     const std::size_t rows = std::size_t(g.ny) * std::size_t(g.nz);
     return spans.nx == g.nx && spans.first.size() == rows && spans.values.size() == rows;
   };
+  const auto historyFits = [&] {
+    const auto grids = std::as_const(snapshot.rock.history).grids();
+    return std::all_of(grids.begin(), grids.end(), [&](const RowSpans* spans) { return fits(*spans); });
+  };
   if (snapshot.cycle < 0 || snapshot.rock.material.size() != g.cellCount() || !fits(snapshot.rock.integrity) ||
-      !fits(snapshot.rock.durability) ||
-      (!snapshot.rock.history.empty() &&
-       !(fits(snapshot.rock.history.exposed) && fits(snapshot.rock.history.covered) &&
-         fits(snapshot.rock.history.covered_for) && fits(snapshot.rock.history.scarred))) ||
+      !fits(snapshot.rock.durability) || (!snapshot.rock.history.empty() && !historyFits()) ||
       (!snapshot.rock.rind.empty() && snapshot.rock.rind.size() != g.cellCount()))
     throw std::invalid_argument("simulation snapshot: its grids do not match its layout");
   const int cycle = snapshot.cycle;
