@@ -291,6 +291,21 @@ struct CollisionParams {
   bool colluvium = false;                   // also hull the colluvium, separately
 };
 
+// ---- delivery (docs/delivery.md) ----
+// Where the files go: an engine's conventions and a compressed set beside the full one.
+enum class DeliveryProfile {
+  Generic,  // names as docs/formats.md gives them, maps as files beside the GLBs (OpenGL normals)
+  Unreal,   // SM_/M_/T_ prefixes, UCX_ hulls, DirectX normal-map files, images embedded in the GLBs
+  Godot,    // -convcolonly hulls, images embedded
+  Unity,    // images embedded
+};
+struct DeliveryParams {
+  DeliveryProfile profile = DeliveryProfile::Generic;
+  // Also write compressed/: the GLBs with KTX2 (Basis Universal) maps and quantised,
+  // meshopt-compressed meshes (docs/delivery.md). Needs the basisu and gltfpack programs.
+  bool compressed = false;
+};
+
 // ---- clasts (docs/model.md §13) ----
 // Stones on the debris apron (clasts/clasts.h): each a small weathered rock, placed after the
 // simulation, exported as instances of a few shared meshes. Sizes are the stone's longest axis in
@@ -361,7 +376,8 @@ struct Preset : SimParams {
   CollisionParams collision;
   std::vector<std::string> exports{"ply", "glb", "vdb", "collision"};  // "obj" on request
   std::vector<std::string> tags;                                       // asset.json's tags, each [a-z0-9_-]+
-  double units_per_meter = 1.0;  // world units per metre (asset.json's physical size), > 0
+  double units_per_meter = 1.0;  // world units per metre: the GLBs are written in metres, > 0
+  DeliveryParams delivery;
   RenderParams render;
   // The texture set (UV atlases, tangent frames and baked maps on every LOD); none: the
   // meshes carry vertex colours only. The house style gives one.

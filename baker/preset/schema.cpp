@@ -66,6 +66,14 @@ std::span<const EnumName<HullNaming>> enumNames() {
   return names;
 }
 template <>
+std::span<const EnumName<DeliveryProfile>> enumNames() {
+  static constexpr EnumName<DeliveryProfile> names[] = {{DeliveryProfile::Generic, "generic"},
+                                                        {DeliveryProfile::Unreal, "unreal"},
+                                                        {DeliveryProfile::Godot, "godot"},
+                                                        {DeliveryProfile::Unity, "unity"}};
+  return names;
+}
+template <>
 std::span<const EnumName<ResponseParams::Kind>> enumNames() {
   using K = ResponseParams::Kind;
   static constexpr EnumName<K> names[] = {{K::Power, "power"}, {K::Threshold, "threshold"}, {K::Curve, "curve"}};
@@ -678,6 +686,20 @@ const MapSpec<CollisionParams>& collisionSpec() {
   return spec;
 }
 
+const MapSpec<DeliveryParams>& deliverySpec() {
+  static const Keys<DeliveryParams> k;
+  static const MapSpec<DeliveryParams> spec{
+      {
+          k("profile", &DeliveryParams::profile, choice<DeliveryProfile>(),
+            "an engine's conventions: names, the normal map's green channel, hull names, embedded images"),
+          k("compressed", &DeliveryParams::compressed, boolean(),
+            "also write `compressed/`: KTX2 maps and quantised, meshopt-compressed meshes"),
+      },
+      {},
+      "Where the files go ([delivery.md](delivery.md))."};
+  return spec;
+}
+
 const MapSpec<TextureParams>& textureSpec() {
   static const Keys<TextureParams> k;
   static const MapSpec<TextureParams> spec{
@@ -846,7 +868,9 @@ const MapSpec<Preset>& presetSpec() {
           k("collision", &Preset::collision, mapValue<collisionSpec>(), "convex hulls a game engine collides with"),
           k("tags", &Preset::tags, tagList(), "`asset.json`'s tags (a tag given twice is kept once)"),
           k("units_per_meter", &Preset::units_per_meter, numberIn(0.0, 1e6, true),
-            "world units per metre: `asset.json`'s physical size"),
+            "world units per metre: the GLBs are written in metres (glTF's unit), `asset.json` gives sizes in "
+            "metres"),
+          k("delivery", &Preset::delivery, mapValue<deliverySpec>(), "an engine profile and a compressed set"),
           k("render", &Preset::render, mapValue<renderSpec>(), "the POV-Ray render"),
           k("texture", &Preset::texture, mapValue<textureSpec>(), "the texture set: UV atlases and baked maps"),
           k("clasts", &Preset::clasts, mapValue<clastSpec>(), "stones on the debris apron"),

@@ -26,8 +26,8 @@ struct EnumName {
   const char* name;
 };
 // Every value of E with its name, in the reference's order. Defined for Palette,
-// RockfallMode, ImageMode, BubbleSpec::Kind, ResponseParams::Kind, HullNaming, TextureMap and
-// LodMapSize.
+// RockfallMode, ImageMode, BubbleSpec::Kind, ResponseParams::Kind, HullNaming, DeliveryProfile,
+// TextureMap and LodMapSize.
 template <class E>
 std::span<const EnumName<E>> enumNames();
 
