@@ -9,6 +9,8 @@
 #     studio/            the page and the three.js files it serves
 #     review/            the review page (it imports the studio's three.js)
 #     slurm/             deploy/slurm's scripts
+#     presets/           the catalogue presets, their shapes/ and libraries/; a preset
+#                        extends one by name: `extends: rockbake:base.yaml`
 #   <prefix>/share/doc/rockbake/           LICENSE, THIRD_PARTY_NOTICES, README.md
 #
 # The destinations are fixed, not GNUInstallDirs' variables: the executable finds its
@@ -18,7 +20,7 @@
 # uninstalled build reads the templates and the page as they are edited.
 set(ROCKBAKE_BUILD_DATA_DIR ${PROJECT_BINARY_DIR}/share/rockbake)
 file(MAKE_DIRECTORY ${ROCKBAKE_BUILD_DATA_DIR})
-foreach(folder render_templates studio review)
+foreach(folder render_templates studio review presets)
   file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder} ${ROCKBAKE_BUILD_DATA_DIR}/${folder} SYMBOLIC)
 endforeach()
 
@@ -51,6 +53,12 @@ endforeach()
 # The review page: its HTML, module and styles.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/review/ DESTINATION share/rockbake/review
         FILES_MATCHING PATTERN "*.html" PATTERN "*.js" PATTERN "*.css")
+
+# The catalogue presets (docs/libraries.md, "Sharing presets"): every preset, base and library
+# file, and the images and blockouts they name (any file of presets/), but not the script that
+# drew the images. The install test bakes an installed preset that names an image.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/presets/ DESTINATION share/rockbake/presets PATTERN "*.py" EXCLUDE)
+
 
 set(slurm ${PROJECT_SOURCE_DIR}/deploy/slurm)
 install(PROGRAMS ${slurm}/submit.sh ${slurm}/rockbake-library.sbatch ${slurm}/rockbake-index.sbatch

@@ -40,6 +40,7 @@
 #include "preset/library.h"
 #include "preset/load_preset.h"
 #include "preset/preset_json.h"
+#include "preset/preset_pack.h"
 #include "preset/render_templates.h"
 #include "render/render_asset.h"
 #include "review/review_server.h"
@@ -292,7 +293,7 @@ struct LintArgs {
 CLI::App* declareLint(CLI::App& app, LintArgs& args) {
   CLI::App* command = app.add_subcommand(
       "lint", "Check presets, the bases they extend and library files; list every problem (file:line:col: key.path)");
-  command->add_option("presets", args.presets, "Preset, base or library YAML files")->required();
+  command->add_option("presets", args.presets, "Preset, base or library YAML files, or pack folders")->required();
   addSets(command, args.sets, "Override a key of every preset before checking it (repeatable)");
   return command;
 }
@@ -337,28 +338,56 @@ std::vector<rockbake::InputError> lintLibrary(const std::filesystem::path& file,
   return found;
 }
 
+// A pack (a folder holding pack.json, preset/preset_pack.h): pack.json against the folder, then every
+// preset it lists as lintOnePreset checks it.
+std::vector<rockbake::InputError> lintPack(const std::filesystem::path& dir,
+                                           const rockbake::PresetOverrides& overrides, std::string& what) {
+  rockbake::PackCheck check = rockbake::checkPack(dir);
+  for (const auto& preset : check.presets)
+    for (auto& problem : lintOnePreset(dir / preset, overrides)) check.problems.push_back(std::move(problem));
+  what = fmt::format(" (a pack of {} preset{} and {} file{}, every file's SHA-256 checked)", check.presets.size(),
+                     check.presets.size() == 1 ? "" : "s", check.files, check.files == 1 ? "" : "s");
+  return check.problems;
+}
+
+// A preset, base or library file's problems; `what` says what it is when it is a base or a library.
+std::vector<rockbake::InputError> lintFile(const std::string& file, const LintArgs& args,
+                                           const rockbake::PresetOverrides& overrides, std::string& what) {
+  switch (rockbake::presetFileKind(file)) {
+    case rockbake::PresetFileKind::Preset:
+      return lintOnePreset(file, overrides);
+    case rockbake::PresetFileKind::Base:
+      what = " (a base: no name, shape or time of its own; presets extend it)";
+      return rockbake::lintBase(file, overrides);
+    case rockbake::PresetFileKind::Library: {
+      std::size_t jobs = 0;
+      auto found = lintLibrary(file, args.sets, jobs);
+      what = fmt::format(" (a library of {} job{}, every preset checked)", jobs, jobs == 1 ? "" : "s");
+      return found;
+    }
+  }
+  return {};
+}
+
 // Lists every problem of every file, one per line ("file:line:col: key.path: problem (hint)"), and
-// "FILE: ok" for each clean one (saying what it is when it is a base or a library).
+// "FILE: ok" for each clean one (saying what it is when it is a base, a library or a pack). A file in a
+// pack's folder is checked with its pack.
 int runLint(const LintArgs& args) {
   std::size_t problems = 0, failed = 0;
   const rockbake::PresetOverrides overrides{args.sets, std::nullopt, std::nullopt};
   for (const auto& file : args.presets) {
     std::vector<rockbake::InputError> found;
     std::string what;
-    switch (rockbake::presetFileKind(file)) {
-      case rockbake::PresetFileKind::Preset:
-        found = lintOnePreset(file, overrides);
-        break;
-      case rockbake::PresetFileKind::Base:
-        found = rockbake::lintBase(file, overrides);
-        what = " (a base: no name, shape or time of its own; presets extend it)";
-        break;
-      case rockbake::PresetFileKind::Library: {
-        std::size_t jobs = 0;
-        found = lintLibrary(file, args.sets, jobs);
-        what = fmt::format(" (a library of {} job{}, every preset checked)", jobs, jobs == 1 ? "" : "s");
-        break;
-      }
+    const std::filesystem::path folder =
+        std::filesystem::path(file).has_parent_path() ? std::filesystem::path(file).parent_path() : ".";
+    if (std::filesystem::is_directory(file)) {
+      found = lintPack(file, overrides, what);
+    } else if (rockbake::isPackFolder(folder)) {
+      found = rockbake::checkPack(folder).problems;
+      for (auto& problem : lintFile(file, args, overrides, what)) found.push_back(std::move(problem));
+      what += " (in a pack: its pack.json checked too)";
+    } else {
+      found = lintFile(file, args, overrides, what);
     }
     for (const auto& problem : found) std::cout << problem.what() << '\n';
     if (found.empty()) std::cout << file << ": ok" << what << "\n";
@@ -407,6 +436,35 @@ int runPresetShow(const PresetShowArgs& args) {
                                "add a family: block (docs/preset-reference.md)");
   std::cout << (args.individual ? rockbake::individualJson(preset).dump(2) : rockbake::presetToJson(preset).dump(2))
             << std::endl;
+  return kExitOk;
+}
+
+// ---- preset pack ----
+
+struct PresetPackArgs {
+  std::vector<std::string> presets;
+  std::string out_dir;
+};
+
+// A subcommand of `preset` (declarePresetShow made it).
+CLI::App* declarePresetPack(CLI::App& app, PresetPackArgs& args) {
+  CLI::App* command = app.get_subcommand("preset")->add_subcommand(
+      "pack", "Bundle presets with every file they reach (bases, images, blockouts) into a folder to share");
+  command->add_option("presets", args.presets, "Preset YAML files, all in one folder")->required();
+  command->add_option("-o,--out", args.out_dir, "The pack folder: new, empty, or a pack to replace")->required();
+  return command;
+}
+
+int runPresetPack(const PresetPackArgs& args) {
+  const std::vector<std::filesystem::path> presets(args.presets.begin(), args.presets.end());
+  const rockbake::PackSummary pack = rockbake::packPresets(presets, args.out_dir);
+  spdlog::info("{} {}: {} preset{}, {} file{} ({} bytes){}; bake it with `rockbake bake {}`",
+               pack.replaced ? "replaced" : "wrote", pack.dir.string(), pack.presets.size(),
+               pack.presets.size() == 1 ? "" : "s", pack.files, pack.files == 1 ? "" : "s", pack.bytes,
+               pack.rewritten ? fmt::format(", {} path{} rewritten to the pack's copies", pack.rewritten,
+                                            pack.rewritten == 1 ? "" : "s")
+                              : "",
+               (pack.dir / pack.presets.front()).string());
   return kExitOk;
 }
 
@@ -645,6 +703,7 @@ int main(int argc, char** argv) {
   RenderArgs render;
   LintArgs lint;
   PresetShowArgs preset_show;
+  PresetPackArgs preset_pack;
   StudioArgs studio;
   ReviewArgs review;
   LibraryArgs library;
@@ -655,6 +714,7 @@ int main(int argc, char** argv) {
       {declareRender(app, render), [&] { return runRender(render); }},
       {declareLint(app, lint), [&] { return runLint(lint); }},
       {declarePresetShow(app, preset_show), [&] { return runPresetShow(preset_show); }},
+      {declarePresetPack(app, preset_pack), [&] { return runPresetPack(preset_pack); }},
       {declareStudio(app, studio), [&] { return runStudio(studio); }},
       {declareReview(app, review), [&] { return runReview(review); }},
       {declareLibrary(app, library), [&] { return runLibrary(library, verbose); }},

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <optional>
 
+#include "core/did_you_mean.h"
 #include "core/error.h"
+#include "platform/data_dir.h"
+#include "preset/catalogue.h"
 #include "preset/schema.h"
 #include "preset/yaml_text.h"
 
@@ -78,6 +81,29 @@ void mergeBase(YAML::Node child, const YAML::Node& base, const std::string& path
   }
 }
 
+// The installed catalogue file `extends: rockbake:NAME` names (preset/catalogue.h); InputError at `here`
+// for a name that is not one, or names no installed file.
+fs::path catalogueBase(const std::string& name, const SourceLocation& here) {
+  if (const auto problem = catalogueNameProblem(name))
+    throw InputError(here, "extends", *problem,
+                     "rockbake:NAME names a preset installed with rockbake, such as rockbake:base.yaml");
+  const fs::path dir = catalogueDir();
+  if (dir.empty())
+    throw InputError(here, "extends", "cannot find the installed catalogue: rockbake's data folder is unknown",
+                     "set ROCKBAKE_DATA_DIR to an installed <prefix>/share/rockbake");
+  const fs::path base = (dir / name).lexically_normal();
+  std::error_code ec;
+  if (fs::is_regular_file(base, ec)) return base;
+  const std::vector<std::string> names = cataloguePresetNames();
+  std::string hint = names.empty() ? "the catalogue folder is missing or empty: reinstall rockbake, or set "
+                                     "ROCKBAKE_DATA_DIR to an installed <prefix>/share/rockbake"
+                                   : "installed: " + joinNames(names);
+  if (const auto close = closestName(name, names)) hint = "did you mean rockbake:" + *close + "? " + hint;
+  throw InputError(here, "extends",
+                   "no installed catalogue preset '" + name + "' in " + dir.string() + " (" + dataDirOrigin() + ")",
+                   hint);
+}
+
 // The base preset `root`'s `extends` names, read and parsed (null when there is none).
 // `base_file` and `base_name` receive its absolute path and its name in messages.
 YAML::Node readBase(const YAML::Node& root, const std::string& name, const fs::path& file,
@@ -95,11 +121,16 @@ YAML::Node readBase(const YAML::Node& root, const std::string& name, const fs::p
       locationOf(name, value->IsDefined() && !value->IsNull() && !value->Mark().is_null() ? value->Mark() : key_mark);
   if (!value->IsScalar() || value->Scalar().empty())
     throw InputError(here, "extends", "expected the path of a base preset, found " + describe(*value),
-                     "for example extends: base.yaml (relative to this file)");
+                     "for example extends: base.yaml (relative to this file), or rockbake:base.yaml (installed)");
   const fs::path written = value->Scalar();
-  base_file = (written.is_absolute() ? written : file.parent_path() / written).lexically_normal();
-  base_name =
-      written.is_absolute() ? written.string() : (fs::path(name).parent_path() / written).lexically_normal().string();
+  if (const auto catalogue = catalogueName(value->Scalar())) {
+    base_file = catalogueBase(*catalogue, here);
+    base_name = base_file.string();
+  } else {
+    base_file = (written.is_absolute() ? written : file.parent_path() / written).lexically_normal();
+    base_name = written.is_absolute() ? written.string()
+                                      : (fs::path(name).parent_path() / written).lexically_normal().string();
+  }
 
   for (const auto& earlier : chain)
     if (sameFile(earlier, base_file)) {

@@ -5,7 +5,9 @@
 #   - `dpkg --root` installs it into a scratch root (its dependencies are the
 #     machine's, so they are not checked there);
 #   - the installed /usr/bin/rockbake, there, bakes and renders a small preset and
-#     serves the studio page with every module it imports.
+#     serves the studio page with every module it imports;
+#   - it ships the catalogue presets in /usr/share/rockbake/presets (with shapes/),
+#     which lint clean there and which a preset extends by name (rockbake:NAME).
 # Configures nothing: it packages what the build folder holds.
 #
 #   debian_package_test.sh BUILD_DIR SOURCE_DIR
@@ -87,7 +89,9 @@ PATH=$PATH:/usr/sbin:/sbin dpkg --root="$root" --force-not-root --force-depends 
 status=$(dpkg --root="$root" -s rockbake 2>/dev/null | sed -n 's/^Status: //p')
 [ "$status" = "install ok installed" ] || fail_check "dpkg --root -s rockbake: status '$status'"
 for f in /usr/bin/rockbake /usr/share/rockbake/render_templates/ocio/config.ocio /usr/share/rockbake/studio/index.html \
-  /usr/share/rockbake/studio/node_modules/three/build/three.module.js /usr/share/doc/rockbake/THIRD_PARTY_NOTICES; do
+  /usr/share/rockbake/studio/node_modules/three/build/three.module.js /usr/share/doc/rockbake/THIRD_PARTY_NOTICES \
+  /usr/share/rockbake/presets/base.yaml /usr/share/rockbake/presets/goblin.yaml \
+  /usr/share/rockbake/presets/shapes/goblin.png /usr/share/rockbake/presets/shapes/boulder.obj; do
   dpkg --root="$root" -L rockbake | grep -q -x -F "$f" || fail_check "the package does not list $f"
   [ -s "$root$f" ] || fail_check "$root$f is missing after dpkg -i"
 done
@@ -110,6 +114,15 @@ if node "$source_dir/tests/install/studio_page.mjs" "$root/usr/bin/rockbake" "$r
 else
   cat "$work/studio.log"
   fail_check "the packaged rockbake's studio page"
+fi
+
+# The catalogue presets, where the package put them, and a preset elsewhere that extends one by name.
+printf 'rockbake: 1\nextends: rockbake:goblin.yaml\nname: cousin\n' >cousin.yaml
+if "$root/usr/bin/rockbake" lint "$root"/usr/share/rockbake/presets/*.yaml cousin.yaml >"$work/catalogue.log" 2>&1; then
+  pass "the packaged catalogue lints clean, and cousin.yaml extends rockbake:goblin.yaml"
+else
+  cat "$work/catalogue.log"
+  fail_check "the packaged catalogue presets"
 fi
 
 finish "the .deb installs into a scratch root, and what it installs runs"

@@ -10,7 +10,10 @@
 #   - serves the studio page and every module it imports (studio_page.mjs), and the
 #     review page over a one-asset library the same way;
 #   - reads everything from ROCKBAKE_DATA_DIR when that is set, and says what is
-#     missing, writing nothing, when its data folder is not there.
+#     missing, writing nothing, when its data folder is not there;
+#   - ships the catalogue presets (share/rockbake/presets, with shapes/), which lint
+#     clean where installed, and which a preset elsewhere extends by name
+#     (`extends: rockbake:base.yaml`) and packs with its installed base.
 # Configures nothing: it installs what the build folder holds.
 #
 #   install_test.sh BUILD_DIR SOURCE_DIR
@@ -50,6 +53,8 @@ for f in bin/rockbake \
   share/rockbake/review/index.html share/rockbake/review/review.js share/rockbake/review/review.css \
   share/rockbake/slurm/submit.sh share/rockbake/slurm/rockbake-library.sbatch \
   share/rockbake/slurm/rockbake-index.sbatch \
+  share/rockbake/presets/base.yaml share/rockbake/presets/goblin.yaml share/rockbake/presets/library.yaml \
+  share/rockbake/presets/shapes/goblin.png share/rockbake/presets/shapes/boulder.obj \
   share/doc/rockbake/LICENSE share/doc/rockbake/THIRD_PARTY_NOTICES share/doc/rockbake/README.md; do
   [ -s "$prefix/$f" ] || fail_check "the install has no $f"
 done
@@ -58,7 +63,8 @@ vendored=$(cd "$prefix/share/rockbake/studio/node_modules" && find . -type f | s
 unexpected=$(grep -v -E '^\./three/(build|examples/jsm)/[^ ]+\.js$' <<<"$vendored" || true)
 [ -z "$unexpected" ] || fail_check "node_modules holds more than three.js modules: $unexpected"
 [ "$(wc -l <<<"$vendored")" -le 8 ] || fail_check "node_modules holds $(wc -l <<<"$vendored") files, not the few the page imports"
-pass "the layout: bin/, share/rockbake/{render_templates,studio,review,slurm}, share/doc/rockbake; node_modules: $(echo $vendored)"
+[ ! -e "$prefix/share/rockbake/presets/shapes/make_shapes.py" ] || fail_check "the install holds presets/shapes/make_shapes.py"
+pass "the layout: bin/, share/rockbake/{render_templates,studio,review,slurm,presets}, share/doc/rockbake; node_modules: $(echo $vendored)"
 # Every file served from another project is named in the notices that ship with it.
 while read -r f; do
   awk -v path="share/rockbake/studio/node_modules/${f#./}" '$1 == path { found = 1 } END { exit !found }' \
@@ -91,6 +97,46 @@ if "$rockbake" render out/small --template debug >"$work/render.log" 2>&1 && [ -
 else
   cat "$work/render.log"
   fail_check "rockbake render --template debug failed"
+fi
+
+# ---------------------------------------------------------------- the installed catalogue
+# Every installed preset, base and library lints clean where it lies (its shapes found beside it).
+if (cd / && "$rockbake" lint "$prefix"/share/rockbake/presets/*.yaml) >"$work/catalogue.log" 2>&1; then
+  pass "the installed catalogue lints clean: $(grep -c ': ok' "$work/catalogue.log") files"
+else
+  cat "$work/catalogue.log"
+  fail_check "the installed catalogue presets do not lint clean"
+fi
+# A preset of its own extends the installed house style by name, and bakes.
+mkdir -p own/shapes
+cp "$source_dir/presets/shapes/goblin.png" own/shapes/rock.png
+cat >own/rock.yaml <<'YAML'
+rockbake: 1
+extends: rockbake:base.yaml
+name: own
+grid: {size: [3.0, 3.0, 3.0], resolution: 20}
+shape:
+  image: {path: shapes/rock.png, mode: extrude, height: 2.0}
+time: 0.3
+YAML
+printf 'rockbake: 1\nextends: rockbake:goblin.yaml\nname: cousin\n' >own/cousin.yaml
+if "$rockbake" lint own/rock.yaml own/cousin.yaml >"$work/own.log" 2>&1 &&
+  "$rockbake" bake own/rock.yaml -o out-own --no-render --no-textures --threads 2 >>"$work/own.log" 2>&1 &&
+  [ -s out-own/own/rock.glb ]; then
+  pass "a preset elsewhere extends rockbake:base.yaml and rockbake:goblin.yaml, and bakes"
+else
+  cat "$work/own.log"
+  fail_check "extends: rockbake:NAME with the moved install"
+fi
+# Packed, the installed bases (and goblin's image) travel in the pack, which lints clean.
+if "$rockbake" preset pack own/rock.yaml own/cousin.yaml -o own-pack >"$work/pack.log" 2>&1 &&
+  [ -s own-pack/rockbake/base.yaml ] && [ -s own-pack/rockbake/goblin.yaml ] &&
+  [ -s own-pack/rockbake/shapes/goblin.png ] && grep -q '^extends: rockbake/base.yaml$' own-pack/rock.yaml &&
+  "$rockbake" lint own-pack >>"$work/pack.log" 2>&1; then
+  pass "rockbake preset pack copied the installed bases into the pack: $(tail -n 1 "$work/pack.log")"
+else
+  cat "$work/pack.log"
+  fail_check "packing presets that extend installed ones"
 fi
 
 # ---------------------------------------------------------------- the studio
