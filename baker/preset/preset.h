@@ -250,6 +250,11 @@ enum class TextureMap {
 };
 // How big each LOD's maps are: `halved`, LOD k at size / 2^k (at least 256); `full`, every LOD at size.
 enum class LodMapSize { Halved, Full };
+// How the maps' files store what is baked (docs/textures.md §6).
+enum class MapPrecision {
+  Compact,  // 8-bit normal maps, half-float height: a game's or a library's set
+  Full,     // 16-bit normal maps, 32-bit float height: as made, for film
+};
 struct TextureParams {
   int size = 2048;   // LOD0's map width and height, texels: a power of two, 256..8192
   int padding = 8;   // empty texels between charts, 0..64; every map is dilated into them
@@ -263,6 +268,7 @@ struct TextureParams {
   std::vector<TextureMap> maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm, TextureMap::Height,
                                   TextureMap::Mask};
   LodMapSize lod_size = LodMapSize::Halved;
+  MapPrecision precision = MapPrecision::Compact;
 };
 struct RenderParams {
   std::string template_name = "studio";

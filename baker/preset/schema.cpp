@@ -74,6 +74,11 @@ std::span<const EnumName<DeliveryProfile>> enumNames() {
   return names;
 }
 template <>
+std::span<const EnumName<MapPrecision>> enumNames() {
+  static constexpr EnumName<MapPrecision> names[] = {{MapPrecision::Compact, "compact"}, {MapPrecision::Full, "full"}};
+  return names;
+}
+template <>
 std::span<const EnumName<ResponseParams::Kind>> enumNames() {
   using K = ResponseParams::Kind;
   static constexpr EnumName<K> names[] = {{K::Power, "power"}, {K::Threshold, "threshold"}, {K::Curve, "curve"}};
@@ -721,6 +726,9 @@ const MapSpec<TextureParams>& textureSpec() {
               .unit(kWorld),
           k("maps", &TextureParams::maps, textureMaps(), "the maps baked; a bake with a `look` adds its History map")
               .defaultIs("all five"),
+          k("precision", &TextureParams::precision, choice<MapPrecision>(),
+            "`compact`: 8-bit normal maps and a half-float height; `full`: 16-bit normal maps and a 32-bit float "
+            "height"),
       },
       {},
       "([textures.md](textures.md)). Given, even as `texture: {}`, the bake makes a texture set: every LOD "

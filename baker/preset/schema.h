@@ -27,7 +27,7 @@ struct EnumName {
 };
 // Every value of E with its name, in the reference's order. Defined for Palette,
 // RockfallMode, ImageMode, BubbleSpec::Kind, ResponseParams::Kind, HullNaming, DeliveryProfile,
-// TextureMap and LodMapSize.
+// TextureMap, LodMapSize and MapPrecision.
 template <class E>
 std::span<const EnumName<E>> enumNames();
 

@@ -59,7 +59,8 @@ struct LodBake {
   int last_row = -1;
 };
 
-TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake);
+// Tangent-space normals, 16-bit: OpenGL's convention (+Y, glTF's), or DirectX's (green inverted).
+TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake, bool directx = false);
 TextureImage<std::uint8_t> bakeBaseColor(const LodBake& bake, const RockLook& look);
 // `occlusion`: vertexOcclusion of bake.lod.
 TextureImage<std::uint8_t> bakeOrm(const LodBake& bake, const std::array<std::vector<float>, 2>& occlusion,

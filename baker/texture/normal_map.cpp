@@ -9,7 +9,7 @@ namespace rockbake {
 using namespace texture_detail;
 constexpr Vec3d kZero{0.0, 0.0, 0.0};  // normalised()'s fallback: a zero vector stays zero
 
-TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake) {
+TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake, bool directx) {
   for (const SurfaceMesh* m : {&bake.lod->rock, &bake.lod->colluvium})
     if (!m->triangles.empty() && m->tangents.size() != m->positions.size())
       throw std::invalid_argument("bakeNormalMap: the " + m->name + " LOD has no tangent frames");
@@ -38,6 +38,7 @@ TextureImage<std::uint16_t> bakeNormalMap(const LodBake& bake) {
         if (std::isfinite(solved[0]) && length(solved) > 0) c = solved;
       }
     }
+    if (directx) c[1] = -c[1];  // the bitangent points down the texture
     for (int k = 0; k < 3; ++k)
       out[k] = std::uint16_t(std::lround(std::clamp((c[std::size_t(k)] + 1.0) * 0.5, 0.0, 1.0) * 65535.0));
   });

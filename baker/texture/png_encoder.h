@@ -1,7 +1,7 @@
 // A PNG encoder for large maps (docs/textures.md): PNG's container (ISO/IEC 15948: signature,
 // IHDR, an sRGB chunk with its gAMA fallback where asked, IDAT, IEND, each with its CRC)
 // around one zlib stream compressed in parallel, as pigz does it: the filtered rows (Up
-// filter) are cut into bands of kBandRows rows, each band deflated on its own (zlib level 1)
+// filter) are cut into bands of kBandRows rows, each band deflated on its own (zlib level 4)
 // and ended with a sync flush, the last one finished, and the bands' Adler-32 checksums
 // combined. libpng compresses on one thread only, and a 16-bit 2048² normal map takes it
 // most of a second. Sixteen bands at a time are deflated and written as one IDAT chunk (the

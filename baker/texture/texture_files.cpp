@@ -1,5 +1,6 @@
 #include "texture/texture_files.h"
 
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -150,14 +151,16 @@ void writeTexturePng(const std::filesystem::path& file, int size, int band_rows,
   writePngBands(file, size, 3, false, band_rows, bands);
 }
 
-void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image) {
+void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image, bool half) {
   if (image.channels != 1 || image.size <= 0 ||
       image.pixels.size() != std::size_t(image.size) * std::size_t(image.size))
     throw std::runtime_error("cannot write EXR " + file.string() + ": one channel of size² pixels expected");
-  writeTextureExr(file, image.size, image.size, [&](int, int) { return image; });
+  writeTextureExr(
+      file, image.size, image.size, [&](int, int) { return image; }, half);
 }
 
-void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands) {
+void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands,
+                     bool half) {
   if (size <= 0) throw std::runtime_error("cannot write EXR " + file.string() + ": no pixels");
   // OpenEXR writes straight into the atomic file's stream (it seeks back to patch its offset table).
   class Stream : public Imf::OStream {
@@ -174,7 +177,7 @@ void writeTextureExr(const std::filesystem::path& file, int size, int band_rows,
   try {
     writeFileAtomically(file, [&](std::ostream& out) {
       Imf::Header header(size, size);
-      header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+      header.channels().insert("Y", Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
       header.compression() = Imf::ZIP_COMPRESSION;
       Stream stream(out, file.string());
       const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
@@ -182,17 +185,27 @@ void writeTextureExr(const std::filesystem::path& file, int size, int band_rows,
       Imf::OutputFile exr(stream, header, threads);
       // Each band's slice is addressed as OpenEXR does a region's: its base pointer is where
       // row 0 would be, and OpenEXR reads only the rows written (y from first onwards).
+      std::vector<Imath::half> halves;
       for (int first = 0; first < size; first += rows) {
         const int last = std::min(size, first + rows);
         const TextureImage<float> band = bands(first, last);
         if (band.first_row != first || band.pixels.size() != std::size_t(last - first) * std::size_t(size))
           throw std::runtime_error("the band of rows " + std::to_string(first) + "–" + std::to_string(last) +
                                    " has the wrong size");
-        const std::size_t row_bytes = sizeof(float) * std::size_t(size);
-        char* base = reinterpret_cast<char*>(const_cast<float*>(band.pixels.data())) -
-                     std::ptrdiff_t(std::size_t(first) * row_bytes);
         Imf::FrameBuffer frame;
-        frame.insert("Y", Imf::Slice(Imf::FLOAT, base, sizeof(float), row_bytes));
+        if (half) {
+          // Rounded to the nearest half (IEEE 754 binary16), as the file stores it.
+          halves.resize(band.pixels.size());
+          for (std::size_t i = 0; i < band.pixels.size(); ++i) halves[i] = Imath::half(band.pixels[i]);
+          const std::size_t row_bytes = sizeof(Imath::half) * std::size_t(size);
+          char* base = reinterpret_cast<char*>(halves.data()) - std::ptrdiff_t(std::size_t(first) * row_bytes);
+          frame.insert("Y", Imf::Slice(Imf::HALF, base, sizeof(Imath::half), row_bytes));
+        } else {
+          const std::size_t row_bytes = sizeof(float) * std::size_t(size);
+          char* base = reinterpret_cast<char*>(const_cast<float*>(band.pixels.data())) -
+                       std::ptrdiff_t(std::size_t(first) * row_bytes);
+          frame.insert("Y", Imf::Slice(Imf::FLOAT, base, sizeof(float), row_bytes));
+        }
         exr.setFrameBuffer(frame);
         exr.writePixels(last - first);
       }

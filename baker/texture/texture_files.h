@@ -1,10 +1,11 @@
 // Texture files (docs/textures.md), named in the Megascans manner and written atomically
 // (platform/atomic_file.h): the bytes depend on the pixels alone (no time stamps).
 //   <name>_BaseColor.png       8-bit sRGB RGB (an sRGB chunk says so)
-//   <name>_Normal_LOD<k>.png   16-bit RGB, linear
+//   <name>_Normal_LOD<k>.png   8-bit RGB, linear (16-bit with texture.precision: full)
 //   <name>_ORM.png             8-bit RGB, linear (no colour chunk: data, not colour)
 //   <name>_Mask.png            8-bit RGBA, linear
-//   <name>_Height.exr          32-bit float, one channel "Y", ZIP-compressed, world units
+//   <name>_Height.exr          16-bit half float (32-bit with texture.precision: full), one channel
+//                              "Y", ZIP-compressed, world units
 // PNGs are compressed for speed, in parallel bands (png_encoder.h); any PNG reader reads them.
 #pragma once
 
@@ -28,8 +29,8 @@ std::string textureFileName(const std::string& name, TextureMap map, int lod = -
 void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::uint8_t>& image, bool srgb);
 // 16-bit, 3 channels, linear.
 void writeTexturePng(const std::filesystem::path& file, const TextureImage<std::uint16_t>& image);
-// 32-bit float, 1 channel.
-void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image);
+// 1 channel, stored as 32-bit float, or as 16-bit half float where `half` (OpenEXR rounds each value).
+void writeTextureExr(const std::filesystem::path& file, const TextureImage<float>& image, bool half = false);
 
 // A map made band by band: bands(first_row, last_row) returns the image of those rows
 // (TextureImage::first_row = first_row). The writers below ask for the bands of
@@ -41,6 +42,7 @@ void writeTexturePng(const std::filesystem::path& file, int size, int channels, 
                      const TextureBands<std::uint8_t>& bands);
 void writeTexturePng(const std::filesystem::path& file, int size, int band_rows,
                      const TextureBands<std::uint16_t>& bands);
-void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands);
+void writeTextureExr(const std::filesystem::path& file, int size, int band_rows, const TextureBands<float>& bands,
+                     bool half = false);
 
 }  // namespace rockbake

@@ -86,6 +86,7 @@ class StepTimer {
 
 // What a LOD's maps read besides its LodBake.
 struct MapInputs {
+  const TextureSetRequest& request;
   const RockLook& look;
   const std::array<std::vector<float>, 2>& occlusion;  // per vertex of the LOD's atlas: the ORM's
   const GroundMask& contact;                           // the mask's alpha
@@ -105,7 +106,9 @@ struct MapKind {
 };
 
 const MapKind kMapKinds[] = {
-    {TextureMap::Normal, [](const LodBake& b, const MapInputs&) { return bakeNormalMap(b); }, 3, 16, "linear", false},
+    {TextureMap::Normal,
+     [](const LodBake& b, const MapInputs& in) { return bakeNormalMap(b, in.request.directx_normals); }, 3, 16,
+     "linear", false},
     {TextureMap::BaseColor, [](const LodBake& b, const MapInputs& in) { return bakeBaseColor(b, in.look); }, 3, 8,
      "srgb", false},
     {TextureMap::Orm, [](const LodBake& b, const MapInputs& in) { return bakeOrm(b, in.occlusion, in.look); }, 3, 8,
@@ -122,17 +125,33 @@ const MapKind& mapKind(TextureMap map) {
   throw std::logic_error("texture set: no row for the map " + mapName(map));
 }
 
+// The bits per channel `kind`'s file has at `precision` (docs/textures.md §6): compact stores the
+// normals in 8 bits and the height in half floats, full as they are made (16 bits, 32-bit floats).
+int fileBits(const MapKind& kind, MapPrecision precision) {
+  return precision == MapPrecision::Compact && kind.bits > 8 ? kind.bits / 2 : kind.bits;
+}
+
 // The writers of texture_files.h, by the map's pixel type.
-void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows,
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision,
               const TextureBands<std::uint8_t>& made) {
   writeTexturePng(file, size, kind.channels, std::string_view(kind.colour_space) == "srgb", rows, made);
 }
-void writeMap(const std::filesystem::path& file, const MapKind&, int size, int rows,
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision precision,
               const TextureBands<std::uint16_t>& made) {
-  writeTexturePng(file, size, rows, made);
+  if (fileBits(kind, precision) == 16) return writeTexturePng(file, size, rows, made);
+  // 8 bits, rounded to the nearest: 1/255 steps keep a normal within 0.23° (docs/textures.md §6).
+  writeTexturePng(file, size, kind.channels, false, rows, [&made](int first, int last) {
+    const TextureImage<std::uint16_t> wide = made(first, last);
+    TextureImage<std::uint8_t> narrow{wide.size, wide.channels, std::vector<std::uint8_t>(wide.pixels.size()),
+                                      wide.first_row};
+    for (std::size_t i = 0; i < wide.pixels.size(); ++i)
+      narrow.pixels[i] = std::uint8_t((std::uint32_t(wide.pixels[i]) * 255u + 32767u) / 65535u);
+    return narrow;
+  });
 }
-void writeMap(const std::filesystem::path& file, const MapKind&, int size, int rows, const TextureBands<float>& made) {
-  writeTextureExr(file, size, rows, made);
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision precision,
+              const TextureBands<float>& made) {
+  writeTextureExr(file, size, rows, made, fileBits(kind, precision) == 16);
 }
 
 // Every LOD's atlas, side by side: each LOD has its own (docs/textures.md §7), and one atlas
@@ -170,8 +189,9 @@ void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, con
     if (kind.lod0_only && k > 0) continue;
     step(lod + " " + mapName(map));  // the time until here: the map's own is in its file's step
     const int suffix = map == TextureMap::Normal || k > 0 ? int(k) : -1;
-    files.push_back(
-        {textureFileName(request.name, map, suffix), map, int(k), size, kind.channels, kind.bits, kind.colour_space});
+    const MapPrecision precision = request.params.precision;
+    files.push_back({textureFileName(request.name, map, suffix), map, int(k), size, kind.channels,
+                     fileBits(kind, precision), kind.colour_space});
     const std::filesystem::path file = request.folder / files.back().file;
     std::visit(
         [&](auto bake_map) {
@@ -181,7 +201,7 @@ void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, con
             band.first_row = first, band.last_row = last;
             return bake_map(band, inputs);
           };
-          writeMap(file, kind, size, rows, bands);
+          writeMap(file, kind, size, rows, precision, bands);
         },
         kind.bake);
     step(lod + " " + mapName(map) + " file");
@@ -255,7 +275,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       for (std::size_t s = 0; s < 2; ++s)
         for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
     if (k == 0) rays.reset();
-    writeLodMaps(request, k, size, bake, {look, occlusion, contact}, files[k], step);
+    writeLodMaps(request, k, size, bake, {request, look, occlusion, contact}, files[k], step);
     if (request.progress) request.progress(int(k), size, ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {

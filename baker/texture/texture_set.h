@@ -36,7 +36,9 @@ struct TextureSetRequest {
   // packed small (uv_atlas.h) and the mask's alpha is its ground contact (bake_maps.h). None: a
   // free-standing rock, neither.
   std::optional<double> ground;
-  std::string name;              // the asset's: file names <name>_BaseColor.png, …
+  std::string name;  // the asset's: file names <name>_BaseColor.png, …
+  // The normal maps in DirectX's tangent space (green down, Unreal's) instead of OpenGL's (glTF's).
+  bool directx_normals = false;
   std::filesystem::path folder;  // where the files go (created if missing)
   // Maps larger than kWholeMapSize are made and written in bands of this many rows, one band
   // in memory at a time (0: kBandRows); smaller ones whole. The files are the same either way.
