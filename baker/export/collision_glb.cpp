@@ -17,7 +17,8 @@
 namespace rockbake {
 namespace {
 
-void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot, const std::string& name) {
+void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot, double metres,
+             const std::string& name) {
   if (hull.positions.size() > std::numeric_limits<std::uint16_t>::max())
     throw std::runtime_error("hull " + name + " has more vertices than 16-bit indices reach");
   std::vector<float> positions;
@@ -26,8 +27,9 @@ void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot,
   position.minValues.assign(3, std::numeric_limits<double>::max());
   position.maxValues.assign(3, std::numeric_limits<double>::lowest());
   for (const Vec3d& p : hull.positions) {
-    // About the pivot, z-up → y-up.
-    const std::array<float, 3> q{float(p[0] - pivot[0]), float(p[2] - pivot[2]), -float(p[1] - pivot[1])};
+    // About the pivot, z-up → y-up, in metres.
+    const std::array<float, 3> q{float(metres * (p[0] - pivot[0])), float(metres * (p[2] - pivot[2])),
+                                 -float(metres * (p[1] - pivot[1]))};
     positions.insert(positions.end(), q.begin(), q.end());
     for (std::size_t a = 0; a < 3; ++a)
       position.minValues[a] = std::min(position.minValues[a], double(q[a])),
@@ -69,9 +71,10 @@ void addHull(tinygltf::Model& model, const ConvexHull& hull, const Vec3d& pivot,
 
 }  // namespace
 
-std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index) {
+std::string collisionNodeName(HullNaming naming, const std::string& surface, std::size_t index,
+                              const std::string& prefix) {
   // Unreal pairs UCX_<name>_<anything> with the mesh <name> of the same import (docs/collision.md).
-  const std::string render_mesh = glbMeshName(surface, 0);
+  const std::string render_mesh = glbMeshName(surface, 0, prefix);
   switch (naming) {
     case HullNaming::Unreal:
       return fmt::format("UCX_{}_{:02}", render_mesh, index);
@@ -81,18 +84,20 @@ std::string collisionNodeName(HullNaming naming, const std::string& surface, std
   throw std::logic_error("collisionNodeName: unknown naming");
 }
 
-std::string stoneCollisionNodeName(HullNaming naming, std::size_t stone) {
+std::string stoneCollisionNodeName(HullNaming naming, std::size_t stone, const std::string& prefix) {
+  const std::string render_mesh = glbMeshName("clast_" + std::to_string(stone), -1, prefix);
   switch (naming) {
     case HullNaming::Unreal:
-      return fmt::format("UCX_clast_{}_00", stone);
+      return fmt::format("UCX_{}_00", render_mesh);
     case HullNaming::Godot:
-      return fmt::format("clast_{}_00-convcolonly", stone);
+      return fmt::format("{}_00-convcolonly", render_mesh);
   }
   throw std::logic_error("stoneCollisionNodeName: unknown naming");
 }
 
 void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNaming naming,
-                       const std::filesystem::path& file) {
+                       const std::filesystem::path& file, const GlbConventions& conventions) {
+  const double metres = conventions.meters_per_unit;
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "rockbake " ROCKBAKE_VERSION;
@@ -103,9 +108,9 @@ void writeCollisionGlb(const CollisionHulls& hulls, const Vec3d& pivot, HullNami
   try {
     for (const auto& [surface, list] : {std::pair{"rock", &hulls.rock}, std::pair{"colluvium", &hulls.colluvium}})
       for (std::size_t i = 0; i < list->size(); ++i)
-        addHull(model, (*list)[i], pivot, collisionNodeName(naming, surface, i));
+        addHull(model, (*list)[i], pivot, metres, collisionNodeName(naming, surface, i, conventions.mesh_prefix));
     for (std::size_t k = 0; k < hulls.stones.size(); ++k)
-      addHull(model, hulls.stones[k], pivot, stoneCollisionNodeName(naming, k));
+      addHull(model, hulls.stones[k], pivot, metres, stoneCollisionNodeName(naming, k, conventions.mesh_prefix));
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }

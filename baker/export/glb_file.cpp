@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -11,6 +13,7 @@
 
 #include "export/gltf_buffer.h"
 #include "platform/atomic_file.h"
+#include "platform/png_image.h"
 
 namespace rockbake {
 namespace {
@@ -42,7 +45,16 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
 struct MapTextures {
   int base_color = -1, normal = -1, orm = -1;
 };
-MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps) {
+// The bytes of the map at `uri` (relative to `folder`), to embed.
+std::vector<unsigned char> mapBytes(const std::filesystem::path& folder, const std::string& uri) {
+  std::ifstream in(folder / uri, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read the map " + (folder / uri).string());
+  if (bytes.empty()) throw std::runtime_error("the map " + (folder / uri).string() + " is missing or empty");
+  return bytes;
+}
+
+MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps, const GlbConventions& conventions) {
   MapTextures t;
   if (maps.base_color.empty() && maps.normal.empty() && maps.orm.empty()) return t;
   tinygltf::Sampler sampler;
@@ -51,11 +63,25 @@ MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps) {
   sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
   sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
   model.samplers.push_back(sampler);
-  const auto add = [&](const std::string& uri) {
+  const auto add = [&](const std::string& uri, bool normal) {
     if (uri.empty()) return -1;
     tinygltf::Image image;
-    image.uri = uri;
     image.mimeType = "image/png";
+    if (normal && conventions.directx_normal_files && !conventions.embed_images)
+      throw std::logic_error("writeGlb: a DirectX normal map cannot be named by URI");
+    if (conventions.embed_images && normal && conventions.directx_normal_files) {
+      RgbImage map = readPngRgb(conventions.image_folder / uri);
+      for (std::size_t i = 1; i < map.pixels.size(); i += 3) map.pixels[i] = std::uint8_t(255 - map.pixels[i]);
+      const std::string bytes = encodePngRgb(map);
+      image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
+      image.name = std::filesystem::path(uri).stem().string();
+    } else if (conventions.embed_images) {
+      const std::vector<unsigned char> bytes = mapBytes(conventions.image_folder, uri);
+      image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
+      image.name = std::filesystem::path(uri).stem().string();
+    } else {
+      image.uri = uri;
+    }
     model.images.push_back(image);
     tinygltf::Texture texture;
     texture.source = int(model.images.size() - 1);
@@ -63,15 +89,16 @@ MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps) {
     model.textures.push_back(texture);
     return int(model.textures.size() - 1);
   };
-  t.base_color = add(maps.base_color);
-  t.normal = add(maps.normal);
-  t.orm = add(maps.orm);
+  t.base_color = add(maps.base_color, false);
+  t.normal = add(maps.normal, true);
+  t.orm = add(maps.orm, false);
   return t;
 }
 
 // The primitive of `m` with its material (named after the mesh), in `model`.
 tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
-                                 const std::array<float, 2>& durability_range, const MapTextures& maps) {
+                                 const std::array<float, 2>& durability_range, const MapTextures& maps,
+                                 const GlbConventions& conventions) {
   const std::size_t n = m.positions.size();
   if (m.normals.size() != n || m.colors.size() != n || m.durability.size() != n || m.colluvium.size() != n ||
       m.curvature.size() != n || m.altitude.size() != n || !m.quads.empty())
@@ -85,10 +112,11 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
   positions.reserve(3 * n), normals.reserve(3 * n), colors.reserve(3 * n), mask.reserve(4 * n);
   const float d_lo = durability_range[0], d_span = durability_range[1] - durability_range[0];
   const auto unit = [](float v) { return std::clamp(v, 0.0f, 1.0f); };
+  const auto metres = float(conventions.meters_per_unit);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& p = m.positions[i];
     const auto& q = m.normals[i];
-    positions.insert(positions.end(), {p[0], p[2], -p[1]});  // z-up → y-up
+    positions.insert(positions.end(), {metres * p[0], metres * p[2], -metres * p[1]});  // z-up → y-up
     normals.insert(normals.end(), {q[0], q[2], -q[1]});
     // With a base-colour map COLOR_0 is white: glTF multiplies it into the map, and it must be
     // there for COLOR_1 (the mask) to be a valid set.
@@ -146,7 +174,7 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
   prim.indices = int(model.accessors.size() - 1);
 
   tinygltf::Material material;
-  material.name = m.name;
+  material.name = conventions.material_prefix + m.name;
   material.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
   if (maps.orm >= 0) {
     // The map holds both: factors of 1 read it as it is (its B, metal, is 0).
@@ -164,9 +192,9 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
 }
 
 void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<float, 2>& durability_range, int lod,
-                const MapTextures& maps) {
-  const tinygltf::Primitive prim = addPrimitive(model, m, durability_range, maps);
-  const std::string name = glbMeshName(m.name, lod);
+                const MapTextures& maps, const GlbConventions& conventions) {
+  const tinygltf::Primitive prim = addPrimitive(model, m, durability_range, maps, conventions);
+  const std::string name = glbMeshName(m.name, lod, conventions.mesh_prefix);
   tinygltf::Mesh mesh;
   mesh.name = name;
   mesh.primitives.push_back(prim);
@@ -179,11 +207,12 @@ void addSurface(tinygltf::Model& model, const SurfaceMesh& m, const std::array<f
 }
 
 // The stones LOD `lod` keeps: one mesh per shape they use (sharing one material), one node each.
-void addClasts(tinygltf::Model& model, const ClastSet& set, const std::array<float, 2>& durability_range, int lod) {
+void addClasts(tinygltf::Model& model, const ClastSet& set, const std::array<float, 2>& durability_range, int lod,
+               const GlbConventions& conventions) {
   const std::size_t count = set.lod_counts.empty() ? set.stones.size() : set.lod_counts.at(std::size_t(lod));
   if (count == 0) return;
   const auto uri = [](const std::string& file) { return file.empty() ? file : "textures/" + file; };
-  const MapTextures maps = addMapTextures(model, {uri(set.base_color), uri(set.normal), uri(set.orm), ""});
+  const MapTextures maps = addMapTextures(model, {uri(set.base_color), uri(set.normal), uri(set.orm), ""}, conventions);
   std::vector<int> mesh_of(set.shapes.size(), -1);
   int material = -1;
   for (std::size_t k = 0; k < count; ++k) {
@@ -192,29 +221,30 @@ void addClasts(tinygltf::Model& model, const ClastSet& set, const std::array<flo
     if (mesh < 0) {
       tinygltf::Primitive prim;
       if (material < 0) {
-        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps);
+        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps, conventions);
         material = prim.material;
       } else {
         // One material for every stone mesh: drop the copy addPrimitive made.
-        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps);
+        prim = addPrimitive(model, set.shapes[std::size_t(stone.shape)], durability_range, maps, conventions);
         model.materials.pop_back();
         prim.material = material;
       }
       tinygltf::Mesh m;
-      m.name = "clast_shape_" + std::to_string(stone.shape);
+      m.name = glbMeshName("clast_shape_" + std::to_string(stone.shape), -1, conventions.mesh_prefix);
       m.primitives.push_back(prim);
       model.meshes.push_back(m);
       mesh = int(model.meshes.size() - 1);
     }
     tinygltf::Node node;
-    node.name = "clast_" + std::to_string(k);
+    node.name = glbMeshName("clast_" + std::to_string(k), -1, conventions.mesh_prefix);
     node.mesh = mesh;
     const auto& t = stone.translation;
     const auto& q = stone.rotation;
-    node.translation = {t[0], t[2], -t[1]};  // z-up → y-up, as the vertices
+    const double metres = conventions.meters_per_unit;
+    node.translation = {metres * t[0], metres * t[2], -metres * t[1]};  // z-up → y-up, as the vertices
     // The same change of frame on the rotation: (x, y, z) → (x, z, −y) turns the axis alike.
     node.rotation = {q[0], q[2], -q[1], q[3]};
-    node.scale = {stone.scale, stone.scale, stone.scale};
+    node.scale = {metres * stone.scale, metres * stone.scale, metres * stone.scale};
     model.nodes.push_back(node);
     model.scenes[0].nodes.push_back(int(model.nodes.size() - 1));
   }
@@ -222,12 +252,13 @@ void addClasts(tinygltf::Model& model, const ClastSet& set, const std::array<flo
 
 }  // namespace
 
-std::string glbMeshName(const std::string& surface, int lod) {
-  return surface + "_lod" + std::to_string(lod);
+std::string glbMeshName(const std::string& surface, int lod, const std::string& prefix) {
+  return prefix + surface + (lod >= 0 ? "_lod" + std::to_string(lod) : std::string());
 }
 
 void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod, const MaterialMaps& maps,
-              const ClastSet* clasts) {
+              const ClastSet* clasts, const GlbConventions& conventions) {
+  if (!(conventions.meters_per_unit > 0)) throw std::logic_error("writeGlb: meters_per_unit must be > 0");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "rockbake " ROCKBAKE_VERSION;
@@ -235,10 +266,10 @@ void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int 
   model.scenes.resize(1);
   model.defaultScene = 0;
   try {
-    const MapTextures textures = addMapTextures(model, maps);
+    const MapTextures textures = addMapTextures(model, maps, conventions);
     for (const SurfaceMesh* m : {&meshes.rock, &meshes.colluvium})
-      if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod, textures);
-    if (clasts) addClasts(model, *clasts, meshes.durability_range, lod);
+      if (!m->positions.empty()) addSurface(model, *m, meshes.durability_range, lod, textures, conventions);
+    if (clasts) addClasts(model, *clasts, meshes.durability_range, lod, conventions);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }

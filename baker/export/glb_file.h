@@ -10,13 +10,13 @@
 // durability normalised over AssetMeshes::durability_range (0 on the colluvium
 // surface), colluvium coverage, calibrated curvature s, altitude), for
 // importers that drop custom attributes.
-// glTF is y-up: the asset's z-up world (x, y, z) is written as (x, z, -y),
-// in the same units (metres to glTF readers).
+// glTF is y-up: the asset's z-up world (x, y, z) is written as (x, z, -y), in metres
+// (glTF's unit): world units times GlbConventions::meters_per_unit.
 //
 // Textured (docs/textures.md): a surface with uvs and tangents also gets
 // TEXCOORD_0 and TANGENT (xyzw, handedness in w: the frames the maps were
 // baked in), and its material (one per surface, named after it) the texture
-// set's maps by relative URI: baseColorTexture, normalTexture,
+// set's maps by relative URI (or embedded, GlbConventions::embed_images): baseColorTexture, normalTexture,
 // occlusionTexture and metallicRoughnessTexture (the one ORM image: R
 // occlusion, G roughness, B metal), trilinear, clamped at the edges. With a
 // base-colour map COLOR_0 is white: glTF multiplies it into the map (and
@@ -31,9 +31,23 @@
 
 namespace rockbake {
 
-// The name of `surface`'s ("rock", "colluvium") mesh and node in LOD `lod`'s file:
-// "rock_lod0". Engines pair other files' nodes with it (collision_glb.h).
-std::string glbMeshName(const std::string& surface, int lod);
+// How an asset's GLBs name what they hold, and in what unit (docs/delivery.md: the delivery
+// profile's conventions). The defaults name meshes as before any profile: "rock_lod0".
+struct GlbConventions {
+  std::string mesh_prefix;       // before every mesh and node name: "SM_goblin_" gives "SM_goblin_rock_lod0"
+  std::string material_prefix;   // before every material name: "goblin_" gives "goblin_rock", "goblin_clast"
+  double meters_per_unit = 1.0;  // positions, translations and stone scales are multiplied by it, > 0
+  bool embed_images = false;     // the maps' bytes in the GLB's buffer, not URIs beside it
+  // The normal maps' files are DirectX's (green down): an embedded one is stored with its green
+  // turned back (8-bit), since glTF reads OpenGL's. URIs must not name such files.
+  bool directx_normal_files = false;
+  std::filesystem::path image_folder;  // what the maps' URIs are relative to (the asset folder): read to embed
+};
+
+// The name of `surface`'s ("rock", "colluvium", "clast_3", "clast_shape_0") mesh and node in
+// LOD `lod`'s file: "rock_lod0" (a stone's and a stone shape's, `lod` < 0: no LOD suffix), after
+// the conventions' prefix. Engines pair other files' nodes with it (collision_glb.h).
+std::string glbMeshName(const std::string& surface, int lod, const std::string& prefix = {});
 
 // A LOD's maps, as URIs relative to the file that names them ("textures/goblin_ORM.png");
 // empty: that map is not there. Both surfaces share them (one atlas).
@@ -54,6 +68,6 @@ struct MaterialMaps {
 // imported into one scene keep their names). `maps`: the LOD's texture set
 // (the meshes must then have uvs and tangents).
 void writeGlb(const AssetMeshes& meshes, const std::filesystem::path& file, int lod = 0, const MaterialMaps& maps = {},
-              const ClastSet* clasts = nullptr);
+              const ClastSet* clasts = nullptr, const GlbConventions& conventions = {});
 
 }  // namespace rockbake

@@ -182,7 +182,8 @@ std::vector<std::size_t> clastLodCounts(const ClastSet& set, const std::vector<s
   return counts;
 }
 
-void textureClasts(ClastStage& stage, const Preset& preset, const std::filesystem::path& folder) {
+void textureClasts(ClastStage& stage, const Preset& preset, const std::filesystem::path& folder,
+                   const std::string& name, bool directx_normals) {
   ClastSet& set = stage.set;
   if (set.shapes.empty() || set.stones.empty() || !preset.texture) return;
   AssetMeshes lod, source;
@@ -202,7 +203,8 @@ void textureClasts(ClastStage& stage, const Preset& preset, const std::filesyste
   request.seed = counterHash(preset.seed, purposeId("clast maps"), 0, 0);
   request.voxel_size = 1.3 / kShapeResolution;
   request.varied = preset.bake.palette == Palette::Natural;
-  request.name = preset.name + "_Clasts";
+  request.name = name + "_Clasts";
+  request.directx_normals = directx_normals;
   request.folder = folder;
   const TextureSet maps = bakeTextureSet({lod}, source, request);
   set.shapes = splitRow(maps.lods.at(0).rock, set.shapes.size());

@@ -39,6 +39,9 @@ std::vector<std::size_t> clastLodCounts(const ClastSet& set, const std::vector<s
 // Unwraps the stone meshes into one shared atlas and bakes their base colour, normal and ORM maps
 // from their finest surfaces into `folder` as <name>_Clasts_*.png (texture/texture_set.h), at a
 // quarter of texture.size (256 … 1024). Replaces set.shapes by the unwrapped meshes.
-void textureClasts(ClastStage& stage, const Preset& preset, const std::filesystem::path& folder);
+// `name`: the texture set's (pipeline/delivery_profile.h); the files are <name>_Clasts_BaseColor.png, ….
+// `directx_normals`: the normal map in DirectX's convention (texture_set.h).
+void textureClasts(ClastStage& stage, const Preset& preset, const std::filesystem::path& folder,
+                   const std::string& name, bool directx_normals = false);
 
 }  // namespace rockbake

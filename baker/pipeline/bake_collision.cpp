@@ -8,13 +8,14 @@
 namespace rockbake {
 
 AssetCollision bakeCollision(const VoxelRock& rock, const CollisionParams& params, const std::array<double, 3>& pivot,
-                             const std::filesystem::path& asset_dir) {
-  return writeAssetCollision(buildCollisionHulls(rock, params), params, pivot, asset_dir);
+                             const std::filesystem::path& asset_dir, const GlbConventions& conventions) {
+  return writeAssetCollision(buildCollisionHulls(rock, params), params, pivot, asset_dir, nullptr, conventions);
 }
 
 AssetCollision writeAssetCollision(CollisionHulls hulls, const CollisionParams& params,
                                    const std::array<double, 3>& pivot, const std::filesystem::path& asset_dir,
-                                   const ClastSet* stones) {
+                                   const ClastSet* stones, const GlbConventions& conventions) {
+  const std::string& prefix = conventions.mesh_prefix;
   if (params.colluvium && stones)
     for (std::size_t k = 0; k < stones->stones.size() && k < std::size_t(params.max_hulls); ++k) {
       const ClastInstance& stone = stones->stones[k];
@@ -23,7 +24,7 @@ AssetCollision writeAssetCollision(CollisionHulls hulls, const CollisionParams& 
         points.push_back(add(clastVertex(stone, v), pivot));  // the stones lie about the pivot; hulls in the world
       hulls.stones.push_back(stoneHull(points, params.max_vertices));
     }
-  writeCollisionGlb(hulls, pivot, params.naming, asset_dir / kCollisionFile);
+  writeCollisionGlb(hulls, pivot, params.naming, asset_dir / kCollisionFile, conventions);
   AssetCollision described;
   described.file = kCollisionFile;
   described.naming = schema::nameOf(params.naming);
@@ -31,10 +32,10 @@ AssetCollision writeAssetCollision(CollisionHulls hulls, const CollisionParams& 
   for (const auto& [surface, list] : {std::pair{"rock", &hulls.rock}, std::pair{"colluvium", &hulls.colluvium}})
     for (std::size_t i = 0; i < list->size(); ++i)
       described.hulls.push_back(
-          {collisionNodeName(params.naming, surface, i), (*list)[i].positions.size(), (*list)[i].volume});
+          {collisionNodeName(params.naming, surface, i, prefix), (*list)[i].positions.size(), (*list)[i].volume});
   for (std::size_t k = 0; k < hulls.stones.size(); ++k)
     described.hulls.push_back(
-        {stoneCollisionNodeName(params.naming, k), hulls.stones[k].positions.size(), hulls.stones[k].volume});
+        {stoneCollisionNodeName(params.naming, k, prefix), hulls.stones[k].positions.size(), hulls.stones[k].volume});
   return described;
 }
 

@@ -8,6 +8,7 @@
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
+#include "pipeline/delivery_profile.h"
 #include "platform/stopwatch.h"
 
 namespace rockbake {
@@ -25,6 +26,7 @@ double exportMeshes(const MeshStageResult& r, const TextureSet* textures, const 
                     const std::filesystem::path& asset_dir, const ClastSet* clasts) {
   const Stopwatch export_clock;
   const AssetMeshes& meshes = r.meshes;
+  const DeliveryConventions delivery = deliveryConventions(preset, asset_dir);
   if (textures && textures->lods.size() != 1 + r.lods.size())
     throw std::logic_error("exportMeshes: the texture set has " + std::to_string(textures->lods.size()) + " LODs for " +
                            std::to_string(1 + r.lods.size()));
@@ -60,7 +62,7 @@ double exportMeshes(const MeshStageResult& r, const TextureSet* textures, const 
         const AssetMeshes& lod = textures ? textures->lods[i] : i == 0 ? meshes : r.lods[i - 1];
         writeGlb(lod, asset_dir / r.lod_files[i], int(i),
                  textures ? lodMaterialMaps(*textures, int(i)) : MaterialMaps{},
-                 clasts && !clasts->stones.empty() ? clasts : nullptr);
+                 clasts && !clasts->stones.empty() ? clasts : nullptr, delivery.glb);
       }));
   exports.wait();  // rethrows the first failure
   return export_clock.elapsed();

@@ -107,10 +107,10 @@ RgbImage readPngRgb(const std::filesystem::path& file) {
   return result;
 }
 
-void writePngRgb(const std::filesystem::path& file, const RgbImage& image) {
+std::string encodePngRgb(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
-    throw std::runtime_error("cannot write PNG " + file.string() + ": the image has no pixels or the wrong size");
+    throw std::runtime_error("the image has no pixels or the wrong size");
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
   png.width = png_uint_32(image.width);
@@ -119,11 +119,21 @@ void writePngRgb(const std::filesystem::path& file, const RgbImage& image) {
   ImageGuard guard{&png};
   png_alloc_size_t size = 0;
   if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr))
-    throw std::runtime_error("cannot write PNG " + file.string() + ": " + png.message);
+    throw std::runtime_error(png.message);
   std::string bytes(size, '\0');
   if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
-    throw std::runtime_error("cannot write PNG " + file.string() + ": " + png.message);
+    throw std::runtime_error(png.message);
   bytes.resize(size);
+  return bytes;
+}
+
+void writePngRgb(const std::filesystem::path& file, const RgbImage& image) {
+  std::string bytes;
+  try {
+    bytes = encodePngRgb(image);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot write PNG " + file.string() + ": " + e.what());
+  }
   writeFileAtomically(file, bytes);
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace rockbake {
@@ -30,6 +31,10 @@ struct RgbImage {
 
 // Any PNG as 8-bit RGB (alpha composited over black). Errors as readPngGray.
 RgbImage readPngRgb(const std::filesystem::path& file);
+
+// `image` as the bytes of an 8-bit RGB PNG (no time stamp or other varying chunk). Throws
+// std::runtime_error when it has no pixels or the wrong size.
+std::string encodePngRgb(const RgbImage& image);
 
 // Writes `image` as an 8-bit RGB PNG, atomically (platform/atomic_file.h). The bytes
 // depend only on the pixels: no time stamp or other varying chunk.
