@@ -412,7 +412,7 @@ struct PresetShowArgs {
 };
 
 CLI::App* declarePresetShow(CLI::App& app, PresetShowArgs& args) {
-  CLI::App* preset = app.add_subcommand("preset", "Inspect presets");
+  CLI::App* preset = app.add_subcommand("preset", "Inspect and share presets");
   preset->require_subcommand(1);
   CLI::App* command = preset->add_subcommand(
       "show", "Print the resolved preset as JSON: extends merged, overrides applied, every default filled in");

@@ -1,6 +1,7 @@
 #include "preset/preset_pack.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -170,11 +171,12 @@ void PackPlan::add(const fs::path& in_pack, const fs::path& source, const std::s
   if (role == "preset" || (role == "base" && it->second.role != "preset")) it->second.role = role;
 }
 
+// `preset` as given, so that messages name it as the user did.
 void PackPlan::addPreset(const fs::path& preset) {
   loadPreset(preset);  // a preset that does not load is not packed: the same message a bake gives
   const PresetFiles files = presetFiles(preset);
   std::map<fs::path, std::pair<fs::path, Root>> placed;  // chain file → (its path in the pack, its root)
-  const fs::path name = preset.filename();
+  const fs::path name = files.chain.front().filename();
   if (name == kPackManifestFile)
     throw InputError({preset.string()}, "", "a preset may not be called pack.json in a pack", "rename it");
   placed[files.chain.front()] = {name, Root::Preset};
@@ -203,8 +205,11 @@ void PackPlan::addPreset(const fs::path& preset) {
 // The bytes of `entry` as the pack holds them: its edits applied.
 std::string editedBytes(const PackEntry& entry) {
   std::string text = readBytes(entry.source);
+  // yaml-cpp's offsets leave out a UTF-8 byte order mark.
+  const std::size_t bom = text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
   for (auto it = entry.edits.rbegin(); it != entry.edits.rend(); ++it) {
-    const Edit& edit = it->second;
+    Edit edit = it->second;
+    if (!scalarLength(text, edit.offset, edit.written)) edit.offset += bom;
     const auto length = scalarLength(text, edit.offset, edit.written);
     if (!length)
       throw InputError(edit.where, edit.key_path, "cannot rewrite '" + edit.written + "' to name the pack's copy",
@@ -259,6 +264,22 @@ std::string hiddenSibling(const fs::path& dir, const char* what) {
   std::string name(1, '.');
   name.append(dir.filename().string()).append(what).append(std::to_string(::getpid()));
   return name;
+}
+
+// Removes what packs into `dir` that were killed left beside it: hidden folders of processes that are gone.
+void removeLeftovers(const fs::path& dir) {
+  std::error_code ec;
+  std::string stem(1, '.');
+  stem += dir.filename().string();
+  for (const auto& entry : fs::directory_iterator(dir.parent_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    for (const char* what : {".packing-", ".replaced-"}) {
+      if (name.rfind(stem + what, 0) != 0) continue;
+      const std::string pid = name.substr(stem.size() + std::strlen(what));
+      if (pid.empty() || pid.size() > 9 || !std::all_of(pid.begin(), pid.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+      if (::kill(::pid_t(std::stol(pid)), 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+    }
+  }
 }
 
 // `staging` put in place as `out`, in one step; what `out` held goes.
@@ -337,13 +358,14 @@ PackSummary packPresets(const std::vector<fs::path>& presets, const fs::path& ou
       throw InputError({preset.string()}, "", "is not in " + folder.string() + ", the folder of the first preset",
                        "a pack holds presets of one folder: pack each folder on its own");
     if (std::find(names.begin(), names.end(), file.filename().string()) != names.end()) continue;
-    plan.addPreset(file);
+    plan.addPreset(preset);
     names.push_back(file.filename().string());
   }
 
   const std::vector<fs::path> made = makeFolders(out.parent_path());
   const fs::path staging = out.parent_path() / hiddenSibling(out, ".packing-");
   try {
+    removeLeftovers(out);
     fs::remove_all(staging);
     fs::create_directory(staging);
     PackSummary summary = writePack(plan, names, staging);

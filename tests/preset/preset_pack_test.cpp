@@ -281,11 +281,25 @@ TEST(PresetPack, AbsolutePathsInsideTheFolderBecomeRelative) {
   EXPECT_EQ(loadPreset(dir.path() / "pack" / "rock.yaml").grid.resolution, 20);
 }
 
+// Only the value changes: a byte order mark, CRLF line ends, non-ASCII comments and quoting stay as written.
+TEST(PresetPack, ARewriteChangesTheValueAlone) {
+  TempDir dir;
+  const std::string head = "\xEF\xBB\xBF# caf\xC3\xA9 \xE2\x80\x94 a rock\r\nrockbake: 1\r\nextends: ";
+  const std::string tail = "   # the house style\r\nname: r\r\nshape: {box: {size: [1, 1, 1]}}\r\ntime: 0.5\r\n";
+  for (const std::string written : {"rockbake:base.yaml", "'rockbake:base.yaml'", "\"rockbake:base.yaml\""}) {
+    writeText(dir.path() / "mine" / "r.yaml", head + written + tail);
+    packPresets({dir.path() / "mine" / "r.yaml"}, dir.path() / "pack");
+    EXPECT_EQ(readBytes(dir.path() / "pack" / "r.yaml"), head + "rockbake/base.yaml" + tail) << written;
+    EXPECT_TRUE(checkPack(dir.path() / "pack").problems.empty()) << written;
+  }
+}
+
 TEST(PresetPack, AnExistingPackIsReplacedWhole) {
   TempDir dir;
   writeOwnPreset(dir.path() / "mine", "rockbake:base.yaml");
   const fs::path pack = dir.path() / "pack";
   packPresets({catalogue("goblin.yaml")}, pack);
+  writeText(dir.path() / ".pack.packing-999999" / "goblin.yaml", "left by a pack that was killed\n");
   const PackSummary again = packPresets({dir.path() / "mine" / "rock.yaml"}, pack);
   EXPECT_TRUE(again.replaced);
   EXPECT_EQ(filesUnder(pack), (std::set<std::string>{"pack.json", "rock.yaml", "shapes/goblin.png",
