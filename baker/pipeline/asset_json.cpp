@@ -170,6 +170,7 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   if (asset.collision) j["collision"] = collisionJson(*asset.collision, asset.units_per_meter);
   if (!asset.clasts.is_null()) j["clasts"] = asset.clasts;
   if (!asset.ground.is_null()) j["ground"] = asset.ground;
+  if (!asset.sets.is_null()) j["sets"] = asset.sets;
   if (!asset.individual.is_null()) j["individual"] = asset.individual;
   j["input_hash"] = asset.input_hash;
   return j;

@@ -18,6 +18,9 @@
 //    "ground": {"pivot": "ground-contact", "sink_m", "suggested_burial_m",
 //               "footprint_m": [[x, y], ..], "rock_footprint_m": [[x, y], ..], "contact_area_m2"},
 //                                                                // where it meets the ground; only with ground
+//    "sets": {"full": {"download_bytes", "gpu_bytes", "gpu_texture_bytes", "gpu_mesh_bytes"},
+//             "compressed": {"folder": "compressed", ..the same}},   // only with delivery.compressed
+//                                                                // (compress/compressed_set.h, docs/delivery.md)
 //    "individual": {..}                                          // what the seed drew from the family
 //                                                                // (pipeline/individual_json.h); only with one
 //    "input_hash"}
@@ -87,6 +90,7 @@ struct AssetDescription {
   nlohmann::ordered_json individual;        // null: the preset has no family
   nlohmann::ordered_json clasts;            // null: no stones (clastsJson)
   nlohmann::ordered_json ground;            // null: no ground (groundJson)
+  nlohmann::ordered_json sets;              // null: no compressed set (compress/compressed_set.h)
 };
 
 // asset.json's "ground": the rock (and apron) where they meet the ground plane, after sinking

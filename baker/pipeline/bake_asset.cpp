@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include "compress/compressed_set.h"
 #include "core/error.h"
 #include "export/vdb_file.h"
 #include "mesh/extract_surfaces.h"
@@ -436,6 +437,22 @@ void exportFiles(Bake& bake, const Weathered& weathered, const std::optional<Mes
   bake.clock.lap();
 }
 
+// The compressed set (compress/compressed_set.h) from the GLBs just written; asset.json's "sets" (null
+// without one).
+nlohmann::ordered_json compress(Bake& bake, const std::optional<MeshStageResult>& meshes,
+                                const CompressionTools& tools) {
+  if (!meshes || !bake.preset.delivery.compressed || !exportsFormat(bake.preset, "glb")) return nullptr;
+  bake.checkCancel();
+  spdlog::info("{}: the compressed set ({:.1f} s in)", bake.preset.name,
+               bake.since_start.elapsed() + bake.options.load_seconds);
+  const CompressedSet set = writeCompressedSet(bake.dir(), meshes->lod_files, tools);
+  spdlog::info("{}: compressed set in {:.1f} s: {} → {} bytes to download, {} → {} bytes of GPU memory",
+               bake.preset.name, set.seconds, set.full.download_bytes, set.compressed.download_bytes,
+               set.full.gpuBytes(), set.compressed.gpuBytes());
+  bake.clock.lap();
+  return setsJson(set);
+}
+
 void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
             const ClastSet& clasts) {
   if (!meshes || !bake.stages.render) return;
@@ -467,7 +484,8 @@ void render(Bake& bake, const std::optional<MeshStageResult>& meshes, const std:
 // asset.json, what an asset browser reads (pipeline/asset_json.h): with meshes only; the LODs as shipped (split
 // along their UV seams when there is a texture set), the maps and the collision hulls.
 void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, const std::optional<TextureSet>& textures,
-              const std::optional<AssetCollision>& collision, const ClastSet& clasts, const VoxelRock& rock) {
+              const std::optional<AssetCollision>& collision, const ClastSet& clasts, const VoxelRock& rock,
+              const nlohmann::ordered_json& sets) {
   const double h = rock.layout.h;
   if (!meshes) return;
   const Preset& preset = bake.preset;
@@ -500,6 +518,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
   asset.individual = individualJson(preset);
   asset.clasts = clastsJson(clasts, h, preset.units_per_meter);
   asset.ground = groundJson(rock, meshes->pivot, sinkDepth(rock, preset.mesh.sink), preset.units_per_meter);
+  asset.sets = sets;
   writeAssetJson(asset, bake.dir());
 }
 
@@ -550,6 +569,9 @@ BakeSummary bakeAsset(const Preset& preset, const BakeOptions& options) {
 
 // The recipe. A phase to add is one more line here, a function above, and its row in kBakePhases.
 BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const BakeOptions& options) {
+  // A compressor that is missing is said before anything is written.
+  const bool compressed = options.stages.applied().mesh && exportsFormat(preset, "glb");
+  const CompressionTools compression = compressed ? requireCompressionTools(preset) : CompressionTools{};
   Bake bake(preset, options);
   // A helper program that is missing is said before the simulation, not after it.
   if (options.stages.applied().render) requireHelperPrograms(preset.render.turntable_frames > 0);
@@ -559,8 +581,9 @@ BakeSummary bakeAsset(const Preset& preset, const ResolvedShape& shape, const Ba
   const std::optional<AssetCollision> collision = writeCollision(bake, weathered, shapes);
   const std::optional<TextureSet> textures = texture(bake, weathered, meshes, clasts);
   exportFiles(bake, weathered, meshes, textures, clasts.set);
+  const nlohmann::ordered_json sets = compress(bake, meshes, compression);
   render(bake, meshes, textures, clasts.set);
-  describe(bake, meshes, textures, collision, clasts.set, weathered.rock);
+  describe(bake, meshes, textures, collision, clasts.set, weathered.rock, sets);
   writeStats(bake, weathered);
   writeManifestLast(bake, weathered);
   return commit(bake, weathered);
