@@ -9,6 +9,7 @@
 #     studio/            the page and the three.js files it serves
 #     review/            the review page (it imports the studio's three.js)
 #     slurm/             deploy/slurm's scripts
+#     blender/           scripts/blender/: what `rockbake blender-library` has Blender run
 #     presets/           the catalogue presets, their shapes/ and libraries/; a preset
 #                        extends one by name: `extends: rockbake:base.yaml`
 #   <prefix>/share/doc/rockbake/           LICENSE, THIRD_PARTY_NOTICES, README.md
@@ -23,6 +24,8 @@ file(MAKE_DIRECTORY ${ROCKBAKE_BUILD_DATA_DIR})
 foreach(folder render_templates studio review presets)
   file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder} ${ROCKBAKE_BUILD_DATA_DIR}/${folder} SYMBOLIC)
 endforeach()
+# The Blender script comes from scripts/blender/ (scripts/ is the checkout's tools, not data).
+file(CREATE_LINK ${PROJECT_SOURCE_DIR}/scripts/blender ${ROCKBAKE_BUILD_DATA_DIR}/blender SYMBOLIC)
 
 # ---- install rules
 install(TARGETS rockbake RUNTIME DESTINATION bin)
@@ -59,6 +62,9 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/review/ DESTINATION share/rockbake/revie
 # drew the images. The install test bakes an installed preset that names an image.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/presets/ DESTINATION share/rockbake/presets PATTERN "*.py" EXCLUDE)
 
+# The script Blender runs for `rockbake blender-library` (docs/libraries.md, "Blender's asset browser").
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scripts/blender/ DESTINATION share/rockbake/blender
+        FILES_MATCHING PATTERN "*.py" PATTERN __pycache__ EXCLUDE)
 
 set(slurm ${PROJECT_SOURCE_DIR}/deploy/slurm)
 install(PROGRAMS ${slurm}/submit.sh ${slurm}/rockbake-library.sbatch ${slurm}/rockbake-index.sbatch

@@ -24,6 +24,7 @@
 
 #include "cli/library_progress.h"
 #include "core/error.h"
+#include "delivery/blender_library.h"
 #include "pipeline/asset_folder.h"
 #include "pipeline/bake_asset.h"
 #include "pipeline/checkpoint.h"
@@ -659,6 +660,53 @@ int runLibrary(const LibraryArgs& args, bool verbose) {
   return reportLibraryRun(result, args.out_dir);
 }
 
+// ---- blender-library ----
+
+struct BlenderLibraryArgs {
+  std::vector<std::string> sources;
+  std::string out_dir;
+  std::string blender;
+  int jobs = 1;
+  int threads = 0;
+};
+
+CLI::App* declareBlenderLibrary(CLI::App& app, BlenderLibraryArgs& args) {
+  CLI::App* command = app.add_subcommand(
+      "blender-library",
+      "Make a Blender asset library (one .blend per asset, with catalogues) from baked assets (docs/libraries.md)");
+  command->add_option("sources", args.sources, "Baked library folders (OUT of rockbake library) or asset folders")
+      ->required();
+  command->add_option("-o,--out", args.out_dir, "The Blender asset library folder to write")->required();
+  command->add_option("--blender", args.blender,
+                      "The Blender executable (default: $ROCKBAKE_BLENDER, else blender on PATH)");
+  command->add_option("--jobs", args.jobs, "Blender processes at once (default: 1)")->check(CLI::Range(1, 64));
+  addThreads(command, args.threads, "Cores shared among the Blender processes (default: all)");
+  return command;
+}
+
+// `rockbake blender-library SOURCE... -o OUT`: exit status 0 when every asset was written, 1 when Blender
+// failed on any (the others are written), 2 for bad sources, a missing Blender or an OUT it may not write
+// (nothing is written then).
+int runBlenderLibrary(const BlenderLibraryArgs& args) {
+  rockbake::BlenderLibraryOptions options;
+  options.sources.assign(args.sources.begin(), args.sources.end());
+  options.out_dir = args.out_dir;
+  options.blender = args.blender;
+  options.jobs = args.jobs;
+  options.threads = args.threads;
+  const auto result = rockbake::writeBlenderLibrary(options);
+  const std::string summary =
+      fmt::format("{} written, {} failed{}{} → {}", result.written, result.failed,
+                  result.skipped ? fmt::format(", {} asset folders skipped", result.skipped) : "",
+                  result.removed ? fmt::format(", {} earlier .blend files removed", result.removed) : "", args.out_dir);
+  if (result.failed > 0) {
+    spdlog::error("{}; see the messages above", summary);
+    return kExitFailure;
+  }
+  spdlog::info("{}", summary);
+  return kExitOk;
+}
+
 // ---- the command line ----
 
 // `what` run, its failures turned into exit statuses: 2 for what the user gave (InputError), 1 otherwise,
@@ -707,6 +755,7 @@ int main(int argc, char** argv) {
   StudioArgs studio;
   ReviewArgs review;
   LibraryArgs library;
+  BlenderLibraryArgs blender_library;
   // Each subcommand, declared, and what runs when it is the one given.
   const std::vector<std::pair<CLI::App*, std::function<int()>>> subcommands = {
       {declareBake(app, bake), [&] { return runBake(bake); }},
@@ -718,6 +767,7 @@ int main(int argc, char** argv) {
       {declareStudio(app, studio), [&] { return runStudio(studio); }},
       {declareReview(app, review), [&] { return runReview(review); }},
       {declareLibrary(app, library), [&] { return runLibrary(library, verbose); }},
+      {declareBlenderLibrary(app, blender_library), [&] { return runBlenderLibrary(blender_library); }},
   };
 
   try {
