@@ -137,6 +137,24 @@ async function refresh() {
 
 // ---- the 3-D view ----
 
+// The compressed set's decoders (docs/delivery.md): three's KTX2Loader with the Basis Universal
+// transcoder and the meshopt decoder, both from the pinned three.js, imported the first time a
+// compressed GLB is shown. One KTX2Loader for the page (it owns a pool of workers).
+let compressedDecoders = null;
+function decodersFor(renderer) {
+  if (!compressedDecoders) {
+    compressedDecoders = Promise.all([
+      import('three/addons/loaders/KTX2Loader.js'),
+      import('three/addons/libs/meshopt_decoder.module.js'),
+    ]).then(([{ KTX2Loader }, { MeshoptDecoder }]) => ({
+      ktx2: new KTX2Loader().setTranscoderPath('/vendor/three/examples/jsm/libs/basis/').detectSupport(renderer),
+      meshopt: MeshoptDecoder,
+    }));
+    compressedDecoders.catch(() => { compressedDecoders = null; });
+  }
+  return compressedDecoders;
+}
+
 class Viewer {
   constructor(canvas) {
     this.canvas = canvas;
@@ -159,10 +177,16 @@ class Viewer {
     this.framed = false;
   }
 
-  // Shows the GLB at `url`; `history`: the URL of that LOD's History map, or null.
-  async load(url, history = null) {
+  // Shows the GLB at `url`; `history`: the URL of that LOD's History map, or null; `compressed`:
+  // a GLB of the compressed set (KTX2 maps, meshopt meshes).
+  async load(url, history = null, compressed = false) {
+    const loader = new GLTFLoader();
+    if (compressed) {
+      const { ktx2, meshopt } = await decodersFor(this.renderer);
+      loader.setKTX2Loader(ktx2).setMeshoptDecoder(meshopt);
+    }
     const [gltf, map] = await Promise.all([
-      new GLTFLoader().loadAsync(url),
+      loader.loadAsync(url),
       history ? this.historyTexture(history).catch((e) => {
         message(`cannot load ${history} (${e.message}): the history channels show the vertex attribute`);
         return null;
@@ -176,6 +200,7 @@ class Viewer {
     if (!this.framed) this.frame();
     this.applyChannel();
     this.canvas.dataset.drawn = url;
+    this.canvas.dataset.set = compressed ? 'compressed' : 'full';
   }
 
   // The History map at `url` as a texture: linear RGBA data, read as stored (not premultiplied, no
@@ -317,6 +342,31 @@ function historyMapOf(d, glb) {
   return map ? `/files/${d.name}/${map.file}` : null;
 }
 
+// The GLB to show for the LOD and set chosen: a LOD's file in the compressed set is the full set's
+// name inside the set's folder (asset.json's sets.compressed.folder).
+function chosenGlb() {
+  const glb = $('a-lod').value;
+  const folder = state.current?.compressedFolder;
+  if (!glb || $('a-set').value !== 'compressed' || !folder) return { url: glb, compressed: false };
+  return { url: glb.replace(/\/([^/]*)$/, `/${encodeURIComponent(folder)}/$1`), compressed: true };
+}
+
+// Shows the chosen LOD of the chosen set. The compressed set's uvs are quantised (with a texture
+// transform on the materials' maps), so the History map, read by the vertex uvs, is the full set's alone.
+function showChosen() {
+  const { url, compressed } = chosenGlb();
+  if (!url) return Promise.resolve();
+  return assetViewer.load(url, compressed ? null : historyMapOf(state.current, url), compressed)
+    .catch((e) => message(`cannot show ${url}: ${e.message}`));
+}
+
+// asset.json's "sets" as rows: each set's download and GPU memory, in MB.
+function setRows(sets) {
+  const mb = (bytes) => (Number(bytes) / 1e6).toFixed(2);
+  return Object.entries(sets || {}).filter(([, s]) => s && typeof s === 'object')
+    .map(([name, s]) => [`${name} set: download / GPU (MB)`, `${mb(s.download_bytes)} / ${mb(s.gpu_bytes)}`]);
+}
+
 function statRows(d) {
   const rows = [['status', d.status], ['preset', d.preset], ['wedge', d.wedge], ['seed', d.seed],
     ['tags', (d.tags || []).join(', ')], ['size (m)', (d.size_m || []).map((x) => x.toFixed(3)).join(' × ')],
@@ -324,6 +374,7 @@ function statRows(d) {
     ['input hash', d.input_hash]];
   for (const lod of d.lods || []) rows.push([`LOD${lod.level} triangles`, lod.triangles]);
   for (const [stage, s] of Object.entries(d.stages || {})) rows.push([`${stage} (s)`, Number(s).toFixed(3)]);
+  rows.push(...setRows(d.sets));
   return rows;
 }
 
@@ -334,9 +385,29 @@ function showVerdict(review) {
   if (document.activeElement !== $('a-note')) $('a-note').value = review?.note || '';
 }
 
+// asset.json's "sets", or null: an asset without a compressed set, or an asset.json that cannot be read.
+async function setsOf(d) {
+  if (!d.files?.asset) return null;
+  try {
+    const r = await fetch(d.files.asset);
+    if (!r.ok) return null;
+    const sets = (await r.json())?.sets;
+    return sets && typeof sets === 'object' ? sets : null;
+  } catch {
+    return null;
+  }
+}
+
 async function openAsset(name) {
   const d = await api(`/api/assets/${encodeURIComponent(name)}`);
+  d.sets = await setsOf(d);
+  const folder = d.sets?.compressed?.folder;
+  d.compressedFolder = typeof folder === 'string' && /^[\w.-]+$/.test(folder) && folder !== '..' ? folder : null;
   state.current = d;
+  $('a-set').value = 'full';
+  $('a-set').disabled = !d.compressedFolder;
+  $('a-set').title = d.compressedFolder ? 'the full set (PNG maps) or the compressed set (KTX2 maps, meshopt meshes)'
+    : 'this asset has no compressed set (delivery.compressed)';
   $('a-name').textContent = d.name;
   $('a-movie').hidden = !d.files.movie;
   if (d.files.movie) $('a-movie').src = d.files.movie; else $('a-movie').removeAttribute('src');
@@ -355,10 +426,7 @@ async function openAsset(name) {
   $('asset-view').showModal();
   if (!assetViewer) assetViewer = new Viewer($('a-canvas'));
   assetViewer.framed = false;
-  if (lod.value) {
-    await assetViewer.load(lod.value, historyMapOf(d, lod.value))
-      .catch((e) => message(`cannot show ${lod.value}: ${e.message}`));
-  }
+  await showChosen();
 }
 
 async function saveVerdict(status, note) {
@@ -424,10 +492,8 @@ $('sort').addEventListener('change', drawGrid);
 $('compare').addEventListener('click', () => openCompare().catch((e) => message(e.message)));
 $('a-close').addEventListener('click', () => { $('a-movie').pause(); $('asset-view').close(); });
 $('c-close').addEventListener('click', () => $('compare-view').close());
-$('a-lod').addEventListener('change', () => {
-  const glb = $('a-lod').value;
-  assetViewer.load(glb, historyMapOf(state.current, glb)).catch((e) => message(`cannot show ${glb}: ${e.message}`));
-});
+$('a-lod').addEventListener('change', showChosen);
+$('a-set').addEventListener('change', showChosen);
 $('a-wire').addEventListener('change', () => { assetViewer.wireframe = $('a-wire').checked; assetViewer.applyChannel(); });
 $('a-channel').addEventListener('change', () => { assetViewer.channel = $('a-channel').value; assetViewer.applyChannel(); });
 for (const b of $('a-verdict').querySelectorAll('button'))

@@ -22,6 +22,7 @@ const char* contentType(const fs::path& file) {
   if (ext == ".png") return "image/png";
   if (ext == ".mp4") return "video/mp4";
   if (ext == ".glb") return "model/gltf-binary";
+  if (ext == ".wasm") return "application/wasm";  // three.js's Basis Universal transcoder (docs/review.md)
   return "application/octet-stream";
 }
 
@@ -104,12 +105,16 @@ std::optional<Response> pageResponse(const fs::path& root, const std::string& re
   std::optional<Response> page = fileResponse(root, relative);
   if (!page) return std::nullopt;
   // Scripts, styles, data and media from this server only (three.js makes blob:
-  // URLs for a GLB's images); no plug-ins, no other page framing it.
-  page->headers.emplace_back("Content-Security-Policy",
-                             "default-src 'self'; script-src 'self'" + inlineScriptHashes(page->body) +
-                                 "; style-src 'self'; img-src 'self' blob: data:; media-src 'self' blob:; "
-                                 "connect-src 'self' blob: data:; worker-src 'self' blob:; object-src 'none'; "
-                                 "base-uri 'none'; form-action 'self'; frame-ancestors 'none'");
+  // URLs for a GLB's images); no plug-ins, no other page framing it. 'unsafe-eval': the
+  // compressed set's decoders (docs/delivery.md) compile WebAssembly, and three.js's Basis
+  // Universal transcoder (Emscripten's embind, in a blob: worker that has the page's policy)
+  // makes its bindings with new Function; inline scripts stay limited to the page's own.
+  page->headers.emplace_back(
+      "Content-Security-Policy",
+      "default-src 'self'; script-src 'self'" + inlineScriptHashes(page->body) +
+          " 'unsafe-eval'; style-src 'self'; img-src 'self' blob: data:; media-src 'self' blob:; "
+          "connect-src 'self' blob: data:; worker-src 'self' blob:; object-src 'none'; "
+          "base-uri 'none'; form-action 'self'; frame-ancestors 'none'");
   return page;
 }
 
