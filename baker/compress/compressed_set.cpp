@@ -137,8 +137,7 @@ void writePackInput(const GlbChunks& glb, const std::vector<MapJob>& jobs, const
   const std::string bin = gltf.stem().string() + ".bin";
   writeFileAtomically(gltf.parent_path() / bin, glb.bin);
   doc.at("buffers").at(0)["uri"] = bin;
-  if (!doc.contains("images")) doc["images"] = json::array();
-  for (std::size_t k = 0; k < doc["images"].size(); ++k) {
+  for (std::size_t k = 0; k < keys.size(); ++k) {
     json& image = doc["images"][k];
     const auto job = std::find_if(jobs.begin(), jobs.end(), [&](const MapJob& j) { return j.key == keys[k]; });
     if (job == jobs.end()) continue;  // not a material's map: gltfpack drops what nothing uses
