@@ -119,6 +119,7 @@ nlohmann::ordered_json assetJson(const AssetDescription& asset) {
   j["name"] = asset.name;
   j["tags"] = asset.tags;
   j["units_per_meter"] = asset.units_per_meter;
+  if (!asset.delivery.is_null()) j["delivery"] = asset.delivery;
   // The size of what ships: LOD0's own vertices.
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
   for (const SurfaceMesh* m : {&lod0.rock, &lod0.colluvium})

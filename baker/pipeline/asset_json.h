@@ -3,6 +3,8 @@
 //
 //   {"rockbake_asset": 1, "name", "tags": [..],
 //    "units_per_meter", "size_m": [x, y, z],              // the bounding box in metres
+//    "delivery": {"profile", "normal_map": "opengl" | "directx", "images": "files" | "embedded"},
+//                                                          // textures/' normal maps, the GLBs' images
 //    "pivot": "footprint-centre-on-ground", "up_axis": "z" (PLY, VDB) / "y" (GLB, OBJ),
 //    "lods": [{"level", "file", "triangles", "vertices"}, ..],   // level 0 first; both surfaces counted
 //    with a texture set (docs/textures.md), each LOD also "map_size" (texels) and
@@ -90,6 +92,7 @@ struct AssetDescription {
   nlohmann::ordered_json individual;        // null: the preset has no family
   nlohmann::ordered_json clasts;            // null: no stones (clastsJson)
   nlohmann::ordered_json ground;            // null: no ground (groundJson)
+  nlohmann::ordered_json delivery;          // null: not given (pipeline/delivery_profile.h)
   nlohmann::ordered_json sets;              // null: no compressed set (compress/compressed_set.h)
 };
 

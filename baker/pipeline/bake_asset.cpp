@@ -20,6 +20,7 @@
 #include "pipeline/bake_collision.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/checkpoint.h"
+#include "pipeline/delivery_profile.h"
 #include "pipeline/export_meshes.h"
 #include "pipeline/individual_json.h"
 #include "pipeline/manifest.h"
@@ -28,6 +29,7 @@
 #include "platform/side_by_side.h"
 #include "platform/stopwatch.h"
 #include "preset/preset_json.h"
+#include "preset/schema.h"
 #include "render/render_asset.h"
 #include "sim/grid_layout.h"
 #include "sim/shapes.h"
@@ -316,8 +318,11 @@ std::optional<AssetCollision> writeCollision(Bake& bake, const Weathered& weathe
   if (!shapes.hulls) return std::nullopt;
   Stopwatch clock;
   const auto pivot = footprintPivot(weathered.rock, sinkDepth(weathered.rock, bake.preset.mesh.sink));
+  const DeliveryConventions delivery = deliveryConventions(bake.preset, bake.dir());
+  CollisionParams params = bake.preset.collision;
+  params.naming = delivery.hull_naming;
   AssetCollision collision =
-      writeAssetCollision(std::move(*shapes.hulls), bake.preset.collision, pivot, bake.dir(), &shapes.clasts.set);
+      writeAssetCollision(std::move(*shapes.hulls), params, pivot, bake.dir(), &shapes.clasts.set, delivery.glb);
   shapes.hulls.reset();
   bake.timings.add("collision", clock.lap());
   return collision;
@@ -362,7 +367,9 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.varied = preset.bake.palette == Palette::Natural;  // the debug and curvature palettes are data
   // The ground plane in the meshes' frame (about the pivot, which mesh.sink raised).
   if (weathered.rock.layout.ground) request.ground = -sinkDepth(weathered.rock, preset.mesh.sink);
-  request.name = preset.name;
+  const DeliveryConventions delivery = deliveryConventions(preset, bake.dir());
+  request.name = delivery.texture_name;
+  request.directx_normals = delivery.directx_normals;
   request.folder = bake.dir() / kTextureFolder;
   // The set takes seconds per LOD at the house sizes: the log follows it LOD by LOD.
   request.progress = [&bake](int lod, int size, int lods_done, int lods) {
@@ -387,7 +394,8 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
     spdlog::debug("{}: texture set: {} {:.3f} s ({:.3f} CPU-s)", preset.name, step.name, step.seconds,
                   step.cpu_seconds);
   Stopwatch clast_clock;
-  textureClasts(clasts, preset, request.folder);  // the stones' own small atlas
+  textureClasts(clasts, preset, request.folder, delivery.texture_name,
+                delivery.directx_normals);  // the stones' own small atlas
   if (!clasts.set.stones.empty()) spdlog::debug("{}: the stones' maps in {:.3f} s", preset.name, clast_clock.elapsed());
   clasts.sources.clear();
   bake.timings.add("texture", bake.clock.lap());
@@ -493,6 +501,10 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
   asset.name = preset.name;
   asset.tags = preset.tags;
   asset.units_per_meter = preset.units_per_meter;
+  const DeliveryConventions delivery = deliveryConventions(preset, bake.dir());
+  asset.delivery = {{"profile", schema::nameOf(preset.delivery.profile)},
+                    {"normal_map", delivery.directx_normals ? "directx" : "opengl"},
+                    {"images", delivery.glb.embed_images ? "embedded" : "files"}};
   for (std::size_t i = 0; i <= meshes->lods.size(); ++i) {
     AssetLod lod{meshes->lod_files.at(i), i == 0 ? &meshes->meshes : &meshes->lods[i - 1]};
     if (textures) {

@@ -83,11 +83,11 @@ void expectCollisionAsset(const fs::path& asset, const std::string& naming, bool
   EXPECT_EQ(per_surface.count("colluvium_lod0") > 0, colluvium);
 
   // The same frame as rock.glb: the hulls hold the voxels the surface was smoothed from, so their bounds and the
-  // surface's agree to within a voxel or two (goblin at 32: 0.1 units).
+  // surface's agree to within a voxel or two (goblin at 32: 0.1 units, 0.1 / units_per_meter metres).
   const Box surface = meshBounds(render_meshes, "rock_lod0");
   for (int a = 0; a < 3; ++a) {
-    EXPECT_NEAR(rock_hulls.lo[a], surface.lo[a], 0.25) << "axis " << a;
-    EXPECT_NEAR(rock_hulls.hi[a], surface.hi[a], 0.25) << "axis " << a;
+    EXPECT_NEAR(rock_hulls.lo[a], surface.lo[a], 0.25 / units_per_meter) << "axis " << a;
+    EXPECT_NEAR(rock_hulls.hi[a], surface.hi[a], 0.25 / units_per_meter) << "axis " << a;
   }
   EXPECT_NEAR(rock_hulls.lo[2], 0.0, 1e-6) << "the hulls stand on the ground, at the pivot's height";
 
@@ -104,7 +104,8 @@ void expectCollisionAsset(const fs::path& asset, const std::string& naming, bool
     const json& entry = c["hulls"][i];
     EXPECT_EQ(entry["node"], hulls[i].name);
     EXPECT_EQ(entry["vertices"].get<std::size_t>(), hulls[i].hull.positions.size());
-    const double m3 = hulls[i].hull.volume / std::pow(units_per_meter, 3);
+    // collision.glb is in metres whatever units_per_meter (docs/delivery.md, "Units").
+    const double m3 = hulls[i].hull.volume;
     EXPECT_NEAR(entry["volume_m3"].get<double>(), m3, 1e-5 * m3 + 1e-9) << hulls[i].name;
     vertices += hulls[i].hull.positions.size();
   }

@@ -18,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "platform/openvdb_support.h"
 #include "geometry/triangle_geometry.h"
 #include "inputs/mesh_reader.h"
 #include "inputs/resolve_shape.h"
@@ -34,6 +33,7 @@
 #include "pipeline/bake_asset.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/export_meshes.h"
+#include "platform/openvdb_support.h"
 #include "preset/load_preset.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
@@ -566,16 +566,17 @@ TEST(AssetJson, HasEveryFieldWithCountsThatMatchTheFiles) {
   EXPECT_TRUE(j.at("preview").is_null());  // not rendered
   ASSERT_EQ(j.at("size_m").size(), 3u);
   {
-    // The bounding box of LOD0 (glTF: y up, (x, z, -y)) in metres, at 2 units per metre.
+    // The bounding box of LOD0 (glTF: y up, (x, z, -y)): the GLB is in metres (docs/delivery.md), so it is
+    // size_m itself, at any units_per_meter.
     const tinygltf::Model model = readGlb(asset / "rock.glb");
     std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
     for (const auto& mesh : model.meshes) {
       const auto& a = model.accessors[std::size_t(mesh.primitives[0].attributes.at("POSITION"))];
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], a.minValues[k]), hi[k] = std::max(hi[k], a.maxValues[k]);
     }
-    EXPECT_NEAR(j["size_m"][0].get<double>(), (hi[0] - lo[0]) / 2.0, 1e-5);
-    EXPECT_NEAR(j["size_m"][1].get<double>(), (hi[2] - lo[2]) / 2.0, 1e-5);
-    EXPECT_NEAR(j["size_m"][2].get<double>(), (hi[1] - lo[1]) / 2.0, 1e-5);
+    EXPECT_NEAR(j["size_m"][0].get<double>(), hi[0] - lo[0], 1e-5);
+    EXPECT_NEAR(j["size_m"][1].get<double>(), hi[2] - lo[2], 1e-5);
+    EXPECT_NEAR(j["size_m"][2].get<double>(), hi[1] - lo[1], 1e-5);
     EXPECT_NEAR(lo[1], 0.0, 1e-6);  // resting on the ground, the pivot's height
   }
   EXPECT_EQ(j.at("average_color").at("srgb").get<std::string>().size(), 7u);

@@ -6,10 +6,12 @@
 #include <png.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csetjmp>
 #include <cstring>
 
+#include "core/vec3.h"
 #include "exr_image.h"
 #include "mesh/simplify_lods.h"
 #include "platform/colour.h"
@@ -363,6 +365,62 @@ TEST(TextureFiles, PngsReadBackSampleForSample) {
   for (std::size_t i = 0; i < samples.size(); ++i) ASSERT_EQ(samples[i], mask.pixels[i]) << i;
 }
 
+// texture.precision: compact stores the normals in 8 bits within half a degree of the 16-bit ones
+// full keeps, and the height in half floats within half-float rounding of the 32-bit one;
+// directx_normals inverts the green channel and nothing else.
+TEST(TextureSet, CompactPrecisionKeepsTheFullMapsWithinRounding) {
+  const AssetMeshes& source = test::weatheredRock().meshes;
+  const std::vector<AssetMeshes> lods{source};
+  test::TempDir compact, full, directx;
+  TextureSetRequest request;
+  request.params.size = 256;
+  request.params.ao_rays = 4;
+  request.params.maps = {TextureMap::Normal, TextureMap::Height};
+  request.seed = 3;
+  request.voxel_size = 2.0 / 32;
+  request.name = "p";
+  request.folder = compact.path();
+  bakeTextureSet(lods, source, request);
+  request.folder = directx.path();
+  request.directx_normals = true;
+  bakeTextureSet(lods, source, request);
+  request.folder = full.path();
+  request.directx_normals = false;
+  request.params.precision = MapPrecision::Full;
+  bakeTextureSet(lods, source, request);
+
+  EXPECT_EQ(readPngHeader(compact.path() / "p_Normal_LOD0.png").depth, 8);
+  EXPECT_EQ(readPngHeader(full.path() / "p_Normal_LOD0.png").depth, 16);
+  int size = 0, channels = 0;
+  const std::vector<std::uint16_t> wide = readPngSamples(full.path() / "p_Normal_LOD0.png", size, channels);
+  const std::vector<std::uint16_t> narrow = readPngSamples(compact.path() / "p_Normal_LOD0.png", size, channels);
+  const std::vector<std::uint16_t> flipped = readPngSamples(directx.path() / "p_Normal_LOD0.png", size, channels);
+  ASSERT_EQ(wide.size(), narrow.size());
+  ASSERT_EQ(flipped.size(), narrow.size());
+  double worst = 0.0, sum = 0.0;
+  for (std::size_t i = 0; i + 2 < wide.size(); i += 3) {
+    Vec3d a{}, b{};
+    for (std::size_t k = 0; k < 3; ++k) a[k] = wide[i + k] / 65535.0 * 2 - 1, b[k] = narrow[i + k] / 255.0 * 2 - 1;
+    const double angle = std::acos(std::clamp(dot(normalised(a, a), normalised(b, b)), -1.0, 1.0)) * 180 / M_PI;
+    worst = std::max(worst, angle), sum += angle;
+    ASSERT_EQ(flipped[i], narrow[i]) << i;
+    ASSERT_EQ(flipped[i + 1], 255 - narrow[i + 1]) << i;
+    ASSERT_EQ(flipped[i + 2], narrow[i + 2]) << i;
+  }
+  EXPECT_LT(worst, 0.5);
+  EXPECT_GT(sum, 0.0);  // 8 bits do round
+
+  const test::ExrImage half = test::readExr(compact.path() / "p_Height.exr", {"Y"});
+  const test::ExrImage whole = test::readExr(full.path() / "p_Height.exr", {"Y"});
+  EXPECT_EQ(half.types.at("Y"), Imf::HALF);
+  EXPECT_EQ(whole.types.at("Y"), Imf::FLOAT);
+  const auto& h = half.plane("Y");
+  const auto& f = whole.plane("Y");
+  ASSERT_EQ(h.size(), f.size());
+  for (std::size_t i = 0; i < h.size(); ++i)
+    ASSERT_NEAR(h[i], f[i], std::abs(f[i]) / 1024 + 1e-7) << i;  // a half keeps 11 significant bits
+}
+
 TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   const AssetMeshes& source = test::weatheredRock().meshes;
   std::vector<AssetMeshes> lods{source};
@@ -402,7 +460,7 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
   EXPECT_EQ(colour.colour_type, PNG_COLOR_TYPE_RGB);
   EXPECT_TRUE(colour.srgb);
   const PngHeader normal = readPngHeader(one.path() / "small_Normal_LOD0.png");
-  EXPECT_EQ(normal.depth, 16);
+  EXPECT_EQ(normal.depth, 8);  // texture.precision: compact, the default
   EXPECT_FALSE(normal.srgb);
   const PngHeader mask = readPngHeader(one.path() / "small_Mask.png");
   EXPECT_EQ(mask.colour_type, PNG_COLOR_TYPE_RGB_ALPHA);
@@ -410,7 +468,7 @@ TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
 
   // The height: one float channel, the LOD0-to-source distance, within the cage.
   const test::ExrImage height = test::readExr(one.path() / "small_Height.exr", {"Y"});  // throws without a Y
-  EXPECT_EQ(height.types.at("Y"), Imf::FLOAT);
+  EXPECT_EQ(height.types.at("Y"), Imf::HALF);
   ASSERT_EQ(height.width, 512);
   ASSERT_EQ(height.height, 512);
   // LOD0 is its own source here: every distance is zero but for float rounding (a ray that
