@@ -39,9 +39,14 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/studio/ DESTINATION share/rockbake/studi
 # Of the pinned three.js (studio/package-lock.json), the files the page imports, and only
 # those: the server maps /vendor/three/ to node_modules/three/ (docs/studio.md). The install
 # test follows every import the installed page makes, so a file missing here fails it.
-# The review page (review/) imports the same three.js, with its glTF loader.
+# The review page (review/) imports the same three.js, with its glTF loader, and for the
+# compressed set (docs/delivery.md) the KTX2 loader, its Basis transcoder and the meshopt decoder.
 set(ROCKBAKE_STUDIO_THREE_FILES build/three.module.js examples/jsm/controls/OrbitControls.js
-    examples/jsm/loaders/GLTFLoader.js examples/jsm/utils/BufferGeometryUtils.js)
+    examples/jsm/loaders/GLTFLoader.js examples/jsm/utils/BufferGeometryUtils.js
+    examples/jsm/loaders/KTX2Loader.js examples/jsm/utils/WorkerPool.js examples/jsm/math/ColorSpaces.js
+    examples/jsm/libs/ktx-parse.module.js examples/jsm/libs/zstddec.module.js
+    examples/jsm/libs/basis/basis_transcoder.js examples/jsm/libs/basis/basis_transcoder.wasm
+    examples/jsm/libs/meshopt_decoder.module.js)
 set(three_root ${PROJECT_SOURCE_DIR}/studio/node_modules/three)
 install(CODE "
   if(NOT EXISTS \"${three_root}/package.json\")

@@ -278,9 +278,10 @@ class Viewer {
         const swizzle = this.channel === 'history' ? 'rgb' : 'aaa';
         const history = geometry.attributes._history;  // GLTFLoader's name for _HISTORY
         if (!history) return new THREE.MeshBasicMaterial({ color: 0x000000, wireframe });
-        // The map is the rock's and the colluvium's (their materials' names, docs/formats.md);
-        // the stones have their own uvs and their own _HISTORY.
-        if (this.history && geometry.attributes.uv && (m.name === 'rock' || m.name === 'colluvium')) {
+        // The map is the rock's and the colluvium's (their materials' names end so, after the
+        // asset's or the profile's prefix: docs/delivery.md); the stones have their own uvs and
+        // their own _HISTORY.
+        if (this.history && geometry.attributes.uv && /(^|_)(rock|colluvium)$/.test(m.name)) {
           const material = new THREE.MeshBasicMaterial({ map: this.history, wireframe });
           material.onBeforeCompile = (shader) => {
             shader.fragmentShader = shader.fragmentShader
