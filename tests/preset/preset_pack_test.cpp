@@ -39,6 +39,18 @@ std::set<std::string> filesUnder(const fs::path& dir) {
   return files;
 }
 
+// The 1-based line of `file` that starts with `start`, and "LINE:COLUMN" of the text after it.
+int lineOf(const fs::path& file, const std::string& start) {
+  const std::string text = readBytes(file);
+  std::string needle(1, '\n');
+  needle += start;
+  const std::size_t at = text.find(needle);
+  return at == std::string::npos ? 0 : int(std::count(text.begin(), text.begin() + at + 1, '\n')) + 1;
+}
+std::string placeAfter(const fs::path& file, const std::string& start) {
+  return std::to_string(lineOf(file, start)) + ":" + std::to_string(start.size() + 1);
+}
+
 // Names in `dir` that a pack being written leaves behind (.<name>.packing-<pid>, .<name>.replaced-<pid>).
 std::vector<std::string> leftovers(const fs::path& dir) {
   std::vector<std::string> found;
@@ -82,10 +94,10 @@ TEST(PresetFiles, TheChainAndTheFilesItNamesWithTheirPlaces) {
   ASSERT_EQ(files.refs.size(), 2u);
   EXPECT_EQ(files.refs[0].key_path, "extends");
   EXPECT_EQ(files.refs[0].written, "base.yaml");
-  EXPECT_EQ(files.refs[0].where.line, 10);
+  EXPECT_EQ(files.refs[0].where.line, lineOf(catalogue("goblin.yaml"), "extends: "));
   EXPECT_EQ(files.refs[1].key_path, "shape.image.path");
   EXPECT_EQ(files.refs[1].written, "shapes/goblin.png");
-  EXPECT_EQ(files.refs[1].where.line, 17);
+  EXPECT_EQ(files.refs[1].where.line, lineOf(catalogue("goblin.yaml"), "  image: {path: "));
   EXPECT_EQ(files.refs[1].target, catalogue("shapes/goblin.png").lexically_normal());
   // A blockout, through its own key.
   const PresetFiles boulder = presetFiles(catalogue("boulder-blockout.yaml"));
@@ -404,11 +416,13 @@ TEST(PackLint, ATamperedPackSaysWhatChanged) {
   fs::create_symlink("../shared/base.yaml", pack / "house.yaml");
   const auto lint = runRockbake({"lint", pack.string()});
   EXPECT_EQ(lint.exit_status, 2) << lint.output;
+  std::string extends_at = "goblin.yaml:";
+  extends_at.append(placeAfter(catalogue("goblin.yaml"), "extends: ")).append(": extends: ");
   for (const std::string expected :
-       {"pack/shapes/goblin.png: does not match its SHA-256 in pack.json (files.2.sha256)",
-        "pack/base.yaml: is missing; pack.json lists base.yaml (files.0)",
-        "pack/notes.txt: is not listed in pack.json", "pack/house.yaml: is a symbolic link",
-        "goblin.yaml:10:10: extends: no base preset at"})
+       {std::string("pack/shapes/goblin.png: does not match its SHA-256 in pack.json (files.2.sha256)"),
+        std::string("pack/base.yaml: is missing; pack.json lists base.yaml (files.0)"),
+        std::string("pack/notes.txt: is not listed in pack.json"), std::string("pack/house.yaml: is a symbolic link"),
+        extends_at + "no base preset at"})
     EXPECT_NE(lint.output.find(expected), std::string::npos) << expected << "\n" << lint.output;
 
   // A preset edited to reach outside the pack.
@@ -419,10 +433,12 @@ TEST(PackLint, ATamperedPackSaysWhatChanged) {
   writeText(pack / "goblin.yaml", preset);
   const auto outside = runRockbake({"lint", (pack / "goblin.yaml").string()});
   EXPECT_EQ(outside.exit_status, 2) << outside.output;
-  EXPECT_NE(outside.output.find("goblin.yaml:10:10: extends: '../shared/base.yaml' reaches outside the pack"),
-            std::string::npos)
+  EXPECT_NE(outside.output.find(extends_at + "'../shared/base.yaml' reaches outside the pack"), std::string::npos)
       << outside.output;
-  EXPECT_NE(outside.output.find("goblin.yaml: is 2378 bytes; pack.json (files.1.size) says 2368"), std::string::npos)
+  const std::uintmax_t size = fs::file_size(catalogue("goblin.yaml"));
+  EXPECT_NE(outside.output.find("goblin.yaml: is " + std::to_string(size + 10) + " bytes; pack.json (files.1.size) says " +
+                                std::to_string(size)),
+            std::string::npos)
       << outside.output;
 
   // A folder that is no pack, and a pack.json that is not one.
