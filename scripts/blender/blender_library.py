@@ -32,6 +32,7 @@ Any exception is a failure: the script prints `ROCKBAKE_BLENDER_ERROR <what went
 rockbake reports (the traceback with -v), Blender exits 1 (--python-exit-code), and rockbake
 removes the temporary file.
 """
+import hashlib
 import json
 import math
 import os
@@ -72,7 +73,7 @@ def join(objects, name):
     for o in objects:
         if o.type != "MESH":
             bpy.data.objects.remove(o)
-    target = next((o for o in meshes if o.name.startswith("rock_lod")), meshes[0])
+    target = next((o for o in meshes if "rock_lod" in o.name), meshes[0])  # SM_<name>_rock_lod0 in Unreal's
     if len(meshes) > 1:
         with bpy.context.temp_override(active_object=target, object=target, selected_objects=meshes,
                                        selected_editable_objects=meshes):
@@ -162,22 +163,32 @@ def import_hulls(job, folder, lod0, collection):
 
 
 def pack_images():
-    """One image per file (a map two LODs share is imported twice), each packed into the .blend."""
-    by_file = {}
+    """One image per map, packed into the .blend. A map two LODs share is imported twice: kept once. A GLB
+    that names its maps (the generic profile) has them read from textures/ and packed; one that embeds
+    them (the engine profiles, docs/delivery.md) has them packed by the importer already."""
+    kept = {}
     for image in list(bpy.data.images):
         if image.source != "FILE":
             continue
-        key = os.path.realpath(bpy.path.abspath(image.filepath))
-        if key in by_file:
-            image.user_remap(by_file[key])
+        if image.packed_file:
+            key = hashlib.sha256(image.packed_file.data).hexdigest()
+            name = base_name(image.name)
+            if not os.path.splitext(name)[1]:
+                name += "." + image.file_format.lower().replace("jpeg", "jpg")
+        else:
+            key = os.path.realpath(bpy.path.abspath(image.filepath))
+            name = os.path.basename(key)
+            if not os.path.isfile(key):
+                raise RuntimeError(f"the map {key} is missing")
+        if key in kept:
+            image.user_remap(kept[key])
             bpy.data.images.remove(image)
             continue
-        by_file[key] = image
-        if not os.path.isfile(key):
-            raise RuntimeError(f"the map {key} is missing")
-        image.pack()
-        image.filepath_raw = "//textures/" + os.path.basename(key)
-    return sorted(by_file.values(), key=lambda i: i.name)
+        kept[key] = image
+        if not image.packed_file:
+            image.pack()
+        image.filepath_raw = "//textures/" + name
+    return sorted(kept.values(), key=lambda i: i.name)
 
 
 def frame_camera(scene, obj):

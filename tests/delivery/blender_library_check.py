@@ -8,7 +8,8 @@ EXPECTED.json: {"assets": {NAME: {"catalog": PATH, "dir": ASSET_FOLDER}, ...}, "
 Lists every asset of every .blend in LIBRARY (only IDs marked as assets, as the Asset Browser reads
 them) with its catalogue resolved through blender_assets.cats.txt, its tags and its preview, and
 checks them against each asset folder's asset.json; checks what each .blend holds besides (the
-further LODs and the collision hulls, hidden, parented to the asset; every image packed); then
+asset of asset.json's size in metres, the further LODs and the collision hulls hidden and parented
+to it, every image packed); then
 appends one asset into a new scene, as dragging it from the Asset Browser does, and checks that it
 brings one textured object of asset.json's size in metres. Exits 1 listing what failed.
 """
@@ -111,12 +112,17 @@ def check_blend(name):
         check(not obj.visible_get() and all(c.hide_render for c in obj.users_collection),
               f"{name}: {child} is visible or renders")
     check(lod0.visible_get(), f"{name}: the asset object is hidden")
+    size, want_size = list(lod0.dimensions), asset["size_m"]
+    check(all(abs(a - b) <= 1e-3 + 1e-4 * max(want_size) for a, b in zip(size, want_size)),
+          f"{name}: the asset measures {size} m, asset.json says {want_size} (units_per_meter "
+          f"{asset['units_per_meter']})")
     images = [i for i in bpy.data.images if i.source == "FILE"]
     check(len(images) == len(bpy.data.images), f"{name}: images that are no files: {list(bpy.data.images)}")
     check(all(i.packed_file for i in images), f"{name}: images not packed: "
           f"{[i.name for i in images if not i.packed_file]}")
-    print(f"  {name}.blend: {len(lods)} LODs, {len(hulls)} hulls, {len(images)} packed images, "
-          f"collections {[c.name for c in bpy.data.collections]}")
+    print(f"  {name}.blend: {size[0]:.3f} x {size[1]:.3f} x {size[2]:.3f} m, {len(lods)} LODs, {len(hulls)} hulls, "
+          f"{len(images)} packed images, "
+          f"collections {sorted(c.name for c in bpy.data.collections)}")
 
 
 def images_into(socket, seen):

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `rockbake blender-library` end to end (docs/libraries.md, "Blender's asset browser"): a small
 # library (goblin and rounded-cobble × two seeds, at resolution 32 with 256-texel maps and a
-# 128 × 96 still) and a plain bake without render or textures go into a Blender asset library,
+# 128 × 96 still) and a plain bake without render in Unreal's profile (its maps embedded in its
+# GLBs, docs/delivery.md) and at two world units a metre go into a Blender asset library,
 # which Debian's Blender 3.4 then opens headless (tests/delivery/blender_library_check.py): every
 # asset with its catalogue (through blender_assets.cats.txt), tags and preview, the LODs and hulls
 # each .blend holds, and one asset appended into a new scene, textured and of asset.json's size in
@@ -26,8 +27,10 @@ cat > "$work/lib.yaml" <<YAML
 YAML
 "$rockbake" library "$work/lib.yaml" -o "$work/baked" --jobs 2 --resolution 32 --set texture.size=256 \
   --set render.width=128 --set render.height=96 2>"$work/bake.log" || { cat "$work/bake.log"; fail "the library bake failed"; }
-"$rockbake" bake "$source_dir/presets/cube-to-sphere.yaml" -o "$work/loose" --resolution 32 --no-render --no-textures \
-  2>"$work/bake.log" || { cat "$work/bake.log"; fail "the plain bake failed"; }
+# Without a render (a preview made by Cycles), in Unreal's profile (SM_ names, embedded maps), two
+# world units a metre (its GLBs, and so its .blend, half the size of its grid).
+"$rockbake" bake "$source_dir/presets/cube-to-sphere.yaml" -o "$work/loose" --resolution 32 --no-render \
+  --set texture.size=256 --set delivery.profile=unreal --set units_per_meter=2 2>"$work/bake.log" || { cat "$work/bake.log"; fail "the plain bake failed"; }
 
 "$rockbake" blender-library "$work/baked" "$work/loose/cube-to-sphere" -o "$work/blender" --jobs 2
 python3 - "$work" <<'PY'
