@@ -88,11 +88,13 @@ PATH=$PATH:/usr/sbin:/sbin dpkg --root="$root" --force-not-root --force-depends 
 }
 status=$(dpkg --root="$root" -s rockbake 2>/dev/null | sed -n 's/^Status: //p')
 [ "$status" = "install ok installed" ] || fail_check "dpkg --root -s rockbake: status '$status'"
+listed=$(dpkg --root="$root" -L rockbake)
 for f in /usr/bin/rockbake /usr/share/rockbake/render_templates/ocio/config.ocio /usr/share/rockbake/studio/index.html \
   /usr/share/rockbake/studio/node_modules/three/build/three.module.js /usr/share/doc/rockbake/THIRD_PARTY_NOTICES \
   /usr/share/rockbake/presets/base.yaml /usr/share/rockbake/presets/goblin.yaml \
   /usr/share/rockbake/presets/shapes/goblin.png /usr/share/rockbake/presets/shapes/boulder.obj; do
-  dpkg --root="$root" -L rockbake | grep -q -x -F "$f" || fail_check "the package does not list $f"
+  # The listing read whole first: grep -q closing the pipe early would fail dpkg under pipefail.
+  grep -q -x -F "$f" <<<"$listed" || fail_check "the package does not list $f"
   [ -s "$root$f" ] || fail_check "$root$f is missing after dpkg -i"
 done
 pass "dpkg --root -i installed it: $status, $(dpkg --root="$root" -L rockbake | wc -l) paths"
