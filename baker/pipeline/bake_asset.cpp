@@ -457,7 +457,7 @@ nlohmann::ordered_json compress(Bake& bake, const std::optional<MeshStageResult>
   spdlog::info("{}: compressed set in {:.1f} s: {} → {} bytes to download, {} → {} bytes of GPU memory",
                bake.preset.name, set.seconds, set.full.download_bytes, set.compressed.download_bytes,
                set.full.gpuBytes(), set.compressed.gpuBytes());
-  bake.clock.lap();
+  bake.timings.add("compress", bake.clock.lap());
   return setsJson(set);
 }
 

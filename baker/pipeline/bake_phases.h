@@ -40,6 +40,7 @@ inline constexpr BakePhase kBakePhases[] = {
     {"export", 0.80, 0.05, "writing the meshes and rock.vdb"},  // the mesh files
     {"write_vdb", 0.85, 0.0, ""},
     {"collision", 0.85, 0.0, ""},         // the hulls and collision.glb
+    {"compress", 0.85, 0.0, ""},          // the compressed set (with delivery.compressed)
     {"render", 0.85, 0.15, "rendering"},  // POV-Ray and its previews
     {"total", 1.0, 0.0, ""},              // load and every phase
 };
