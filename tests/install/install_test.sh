@@ -52,7 +52,7 @@ for f in bin/rockbake \
   share/rockbake/studio/node_modules/three/build/three.module.js \
   share/rockbake/review/index.html share/rockbake/review/review.js share/rockbake/review/review.css \
   share/rockbake/slurm/submit.sh share/rockbake/slurm/rockbake-library.sbatch \
-  share/rockbake/slurm/rockbake-index.sbatch \
+  share/rockbake/slurm/rockbake-index.sbatch share/rockbake/blender/blender_library.py \
   share/rockbake/presets/base.yaml share/rockbake/presets/goblin.yaml share/rockbake/presets/library.yaml \
   share/rockbake/presets/shapes/goblin.png share/rockbake/presets/shapes/boulder.obj \
   share/doc/rockbake/LICENSE share/doc/rockbake/THIRD_PARTY_NOTICES share/doc/rockbake/README.md; do
