@@ -45,12 +45,18 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
 struct MapTextures {
   int base_color = -1, normal = -1, orm = -1;
 };
-// The bytes of the map at `uri` (relative to `folder`), to embed.
-std::vector<unsigned char> mapBytes(const std::filesystem::path& folder, const std::string& uri) {
+// The bytes of the map at `uri` (relative to `folder`), to embed; a DirectX normal map
+// (`directx_normal`) with its green turned back to glTF's convention.
+std::string embeddedMap(const std::filesystem::path& folder, const std::string& uri, bool directx_normal) {
+  if (directx_normal) {
+    RgbImage map = readPngRgb(folder / uri);
+    for (std::size_t i = 1; i < map.pixels.size(); i += 3) map.pixels[i] = std::uint8_t(255 - map.pixels[i]);
+    return encodePngRgb(map);
+  }
   std::ifstream in(folder / uri, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw std::runtime_error("cannot read the map " + (folder / uri).string());
-  if (bytes.empty()) throw std::runtime_error("the map " + (folder / uri).string() + " is missing or empty");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.empty() || (!in.good() && !in.eof()))
+    throw std::runtime_error("cannot read the map " + (folder / uri).string() + " to embed it");
   return bytes;
 }
 
@@ -67,18 +73,13 @@ MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps, con
     if (uri.empty()) return -1;
     tinygltf::Image image;
     image.mimeType = "image/png";
-    if (normal && conventions.directx_normal_files && !conventions.embed_images)
+    const bool directx = normal && conventions.directx_normal_files;
+    if (conventions.embed_images) {
+      const std::string bytes = embeddedMap(conventions.image_folder, uri, directx);
+      image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
+      image.name = std::filesystem::path(uri).stem().string();
+    } else if (directx) {
       throw std::logic_error("writeGlb: a DirectX normal map cannot be named by URI");
-    if (conventions.embed_images && normal && conventions.directx_normal_files) {
-      RgbImage map = readPngRgb(conventions.image_folder / uri);
-      for (std::size_t i = 1; i < map.pixels.size(); i += 3) map.pixels[i] = std::uint8_t(255 - map.pixels[i]);
-      const std::string bytes = encodePngRgb(map);
-      image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
-      image.name = std::filesystem::path(uri).stem().string();
-    } else if (conventions.embed_images) {
-      const std::vector<unsigned char> bytes = mapBytes(conventions.image_folder, uri);
-      image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
-      image.name = std::filesystem::path(uri).stem().string();
     } else {
       image.uri = uri;
     }
