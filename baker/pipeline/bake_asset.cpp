@@ -51,7 +51,8 @@ struct Bake {
         stages(options.stages.applied()),
         asset_dir(options.out_dir / preset.name),
         staging(asset_dir, outOfMemoryMessage(preset), options.lock),
-        before(beginAssetFolder(staging.path())) {
+        before(beginAssetFolder(staging.path())),
+        delivery(deliveryConventions(preset, staging.path())) {
     timings.add("load", options.load_seconds);
   }
 
@@ -80,7 +81,8 @@ struct Bake {
   Stopwatch since_start;  // never lapped: the log's "s in"
   StagingFolder staging;
   const AssetFolderSnapshot before;
-  PhaseTimes timings;  // stats.json's "stages" (pipeline/bake_phases.h)
+  const DeliveryConventions delivery;  // the profile's names, unit and maps (pipeline/delivery_profile.h)
+  PhaseTimes timings;                  // stats.json's "stages" (pipeline/bake_phases.h)
 };
 
 // A simulation ready to run: from the initial rock, or from a checkpoint's state (`rockbake resume`).
@@ -318,7 +320,7 @@ std::optional<AssetCollision> writeCollision(Bake& bake, const Weathered& weathe
   if (!shapes.hulls) return std::nullopt;
   Stopwatch clock;
   const auto pivot = footprintPivot(weathered.rock, sinkDepth(weathered.rock, bake.preset.mesh.sink));
-  const DeliveryConventions delivery = deliveryConventions(bake.preset, bake.dir());
+  const DeliveryConventions& delivery = bake.delivery;
   CollisionParams params = bake.preset.collision;
   params.naming = delivery.hull_naming;
   AssetCollision collision =
@@ -367,7 +369,7 @@ std::optional<TextureSet> texture(Bake& bake, const Weathered& weathered, std::o
   request.varied = preset.bake.palette == Palette::Natural;  // the debug and curvature palettes are data
   // The ground plane in the meshes' frame (about the pivot, which mesh.sink raised).
   if (weathered.rock.layout.ground) request.ground = -sinkDepth(weathered.rock, preset.mesh.sink);
-  const DeliveryConventions delivery = deliveryConventions(preset, bake.dir());
+  const DeliveryConventions& delivery = bake.delivery;
   request.name = delivery.texture_name;
   request.directx_normals = delivery.directx_normals;
   request.folder = bake.dir() / kTextureFolder;
@@ -501,7 +503,7 @@ void describe(const Bake& bake, const std::optional<MeshStageResult>& meshes, co
   asset.name = preset.name;
   asset.tags = preset.tags;
   asset.units_per_meter = preset.units_per_meter;
-  const DeliveryConventions delivery = deliveryConventions(preset, bake.dir());
+  const DeliveryConventions& delivery = bake.delivery;
   asset.delivery = {{"profile", schema::nameOf(preset.delivery.profile)},
                     {"normal_map", delivery.directx_normals ? "directx" : "opengl"},
                     {"images", delivery.glb.embed_images ? "embedded" : "files"}};
