@@ -20,6 +20,10 @@ import tempfile
 
 import numpy as np
 
+# The GLB reader the bench's figures use (glTF's chunks and accessors, by the spec's layout).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench"))
+from clast_figures import accessor, read_glb  # noqa: E402
+
 
 def read_image(path):
     """RGB in [0, 1]: oiiotool writes it as an uncompressed 16-bit TIFF, read here strip by strip."""
@@ -44,32 +48,6 @@ def read_image(path):
     raw = b"".join(data[o : o + c] for o, c in zip(tags[273], tags[279]))
     pixels = np.frombuffer(raw, dtype="<u2", count=width * height * 3).reshape(height, width, 3)
     return pixels.astype(np.float64) / 65535.0
-
-
-def read_glb(path):
-    data = open(path, "rb").read()
-    magic, version, length = struct.unpack_from("<III", data, 0)
-    assert magic == 0x46546C67 and version == 2, "not a glTF 2.0 binary"
-    offset, doc, binary = 12, None, b""
-    while offset < length:
-        size, kind = struct.unpack_from("<II", data, offset)
-        chunk = data[offset + 8 : offset + 8 + size]
-        if kind == 0x4E4F534A:
-            doc = json.loads(chunk)
-        elif kind == 0x004E4942:
-            binary = chunk
-        offset += 8 + size
-    return doc, binary
-
-
-def accessor(doc, binary, index):
-    a = doc["accessors"][index]
-    view = doc["bufferViews"][a["bufferView"]]
-    comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[a["type"]]
-    dtype = {5126: np.float32, 5125: np.uint32, 5123: np.uint16}[a["componentType"]]
-    start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
-    values = np.frombuffer(binary, dtype=dtype, count=a["count"] * comps, offset=start)
-    return values.reshape(a["count"], comps) if comps > 1 else values
 
 
 def covered(doc, binary, size):

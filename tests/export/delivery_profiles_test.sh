@@ -48,18 +48,16 @@ blender --background --factory-startup --python-exit-code 1 \
   --python "$source_dir/scripts/delivery_check.py" -- "$work/out/generic" "$work/out/centimetres" "$work/out/unreal"
 
 # The Unreal profile's files: prefixes, DirectX normals, embedded images.
-/usr/bin/python3 - "$work/out" <<'PY'
-import json, os, struct, subprocess, sys, tempfile
+/usr/bin/python3 - "$work/out" "$source_dir" <<'PY'
+import json, os, subprocess, sys, tempfile
 import numpy
 out = sys.argv[1]
+sys.path.insert(0, os.path.join(sys.argv[2], "bench"))
+from clast_figures import read_glb  # glTF's chunks, by the spec's layout
 failures = []
 def check(ok, what):
     if not ok: failures.append(what)
     return "ok" if ok else "FAIL"
-def gltf_json(path):
-    data = open(path, "rb").read()
-    length, kind = struct.unpack_from("<II", data, 12)
-    return json.loads(data[20:20 + length])
 def pixels(path):  # oiiotool decodes, as any client's loader would
     with tempfile.TemporaryDirectory() as tmp:
         subprocess.run(["oiiotool", path, "--ch", "R,G,B", "-o", tmp + "/map.ppm"],  # 8-bit maps: no conversion
@@ -72,13 +70,13 @@ unreal = json.load(open(os.path.join(out, "unreal", "asset.json")))
 generic = json.load(open(os.path.join(out, "generic", "asset.json")))
 print("unreal delivery:", unreal.get("delivery"), check(unreal.get("delivery", {}).get("normal_map") == "directx", "asset.json says directx"))
 print("generic delivery:", generic.get("delivery"), check(generic.get("delivery", {}).get("normal_map") == "opengl", "asset.json says opengl"))
-g = gltf_json(os.path.join(out, "unreal", "rock.glb"))
+g, binary = read_glb(os.path.join(out, "unreal", "rock.glb"))
 meshes = [m["name"] for m in g["meshes"]]
 materials = [m["name"] for m in g["materials"]]
 print("unreal meshes", meshes[:3], check(all(m.startswith("SM_unreal_") for m in meshes), "SM_ prefix"))
 print("unreal materials", materials, check(all(m.startswith("M_unreal_") for m in materials), "M_ prefix"))
 print("unreal images embedded", check(g.get("images") and all("bufferView" in i and "uri" not in i for i in g["images"]), "embedded images"))
-c = gltf_json(os.path.join(out, "unreal", "collision.glb"))
+c, _ = read_glb(os.path.join(out, "unreal", "collision.glb"))
 hulls = [n["name"] for n in c["nodes"]]
 print("unreal hulls", hulls[:2], check(all(h.startswith("UCX_SM_unreal_") for h in hulls), "UCX_ on the SM_ names"))
 maps = [m for m in unreal["maps"] if m["type"] == "normal"]
@@ -93,9 +91,6 @@ for m in maps:
     print(f"  {m['file']}: green flipped vs generic {right:.3f} levels, as is {wrong:.2f} levels: "
           f"{check(right < 0.05, 'flipped matches')} {check(wrong > 5, 'unflipped differs')}")
 # The GLB's own normal map, as glTF reads it (OpenGL's), is the generic one.
-data = open(os.path.join(out, "unreal", "rock.glb"), "rb").read()
-json_length = struct.unpack_from("<I", data, 12)[0]
-binary = data[20 + json_length + 8:]
 material = next(m for m in g["materials"] if m["name"] == "M_unreal_rock")
 image = g["images"][g["textures"][material["normalTexture"]["index"]]["source"]]
 view = g["bufferViews"][image["bufferView"]]

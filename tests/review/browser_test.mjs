@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { createRequire } from 'node:module';
-import { bakeLibrary, check, sleep, startReview, stopReview, until as waitFor, writeLibrary } from './library.mjs';
+import { bakeLibrary, check, coverage, sleep, startReview, stopReview, until as waitFor, writeLibrary } from './library.mjs';
 
 const [rockbake, sourceDir, screenshotDir] = process.argv.slice(2);
 const puppeteer = createRequire(path.resolve(sourceDir, 'studio', 'package.json'))('puppeteer-core');
@@ -25,26 +25,6 @@ const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rockbake-chromium-'));
 const review = await startReview(rockbake, out);
 const url = review.url;
 const until = (what, predicate, seconds = 30) => waitFor(what, predicate, seconds);
-
-// The share of pixels in the model's screen box that differ from the background.
-function coverage(page, which) {
-  return page.evaluate((which) => {
-    const views = window.reviewViewers();
-    const viewer = which === 'asset' ? views.asset : views.compare[which === 'left' ? 0 : 1];
-    const box = viewer.screenBox();
-    const c = document.createElement('canvas');
-    c.width = viewer.canvas.width; c.height = viewer.canvas.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(viewer.canvas, 0, 0);
-    const w = box.x1 - box.x0, h = box.y1 - box.y0;
-    if (w < 4 || h < 4) return 0;
-    const px = ctx.getImageData(box.x0, box.y0, w, h).data;
-    let differ = 0;
-    for (let i = 0; i < px.length; i += 4)
-      if (Math.abs(px[i] - 0x2e) + Math.abs(px[i + 1] - 0x2e) + Math.abs(px[i + 2] - 0x2e) > 12) ++differ;
-    return differ / (w * h);
-  }, which);
-}
 
 // The asset view's pixels in the model's screen box, kept in the page as `name`:
 // the share drawn (not the background), and of those the share neither near

@@ -10,7 +10,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { check, sleep, startReview, stopReview, until as waitFor } from './library.mjs';
+import { check, coverage, sleep, startReview, stopReview, until as waitFor } from './library.mjs';
 
 const [rockbake, sourceDir] = process.argv.slice(2);
 const puppeteer = createRequire(path.resolve(sourceDir, 'studio', 'package.json'))('puppeteer-core');
@@ -31,24 +31,6 @@ const review = await startReview(rockbake, out);
 const url = review.url;
 const until = (what, predicate, seconds = 60) => waitFor(what, predicate, seconds);
 
-// The share of pixels in the model's screen box that differ from the background.
-function coverage(page) {
-  return page.evaluate(() => {
-    const viewer = window.reviewViewers().asset;
-    const box = viewer.screenBox();
-    const c = document.createElement('canvas');
-    c.width = viewer.canvas.width; c.height = viewer.canvas.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(viewer.canvas, 0, 0);
-    const w = box.x1 - box.x0, h = box.y1 - box.y0;
-    if (w < 4 || h < 4) return 0;
-    const px = ctx.getImageData(box.x0, box.y0, w, h).data;
-    let differ = 0;
-    for (let i = 0; i < px.length; i += 4)
-      if (Math.abs(px[i] - 0x2e) + Math.abs(px[i + 1] - 0x2e) + Math.abs(px[i + 2] - 0x2e) > 12) ++differ;
-    return differ / (w * h);
-  });
-}
 
 const browser = await puppeteer.launch({
   executablePath: '/usr/bin/chromium',

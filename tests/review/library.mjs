@@ -65,3 +65,24 @@ export function stopReview(review) {
     review.child.kill('SIGINT');
   });
 }
+
+// The share of pixels in a viewer's model screen box that differ from the page's background:
+// `which` is 'asset' (the asset's view) or 'left' / 'right' (the comparison's two views).
+export function coverage(page, which = 'asset') {
+  return page.evaluate((which) => {
+    const views = window.reviewViewers();
+    const viewer = which === 'asset' ? views.asset : views.compare[which === 'left' ? 0 : 1];
+    const box = viewer.screenBox();
+    const c = document.createElement('canvas');
+    c.width = viewer.canvas.width; c.height = viewer.canvas.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(viewer.canvas, 0, 0);
+    const w = box.x1 - box.x0, h = box.y1 - box.y0;
+    if (w < 4 || h < 4) return 0;
+    const px = ctx.getImageData(box.x0, box.y0, w, h).data;
+    let differ = 0;
+    for (let i = 0; i < px.length; i += 4)
+      if (Math.abs(px[i] - 0x2e) + Math.abs(px[i + 1] - 0x2e) + Math.abs(px[i + 2] - 0x2e) > 12) ++differ;
+    return differ / (w * h);
+  }, which);
+}
