@@ -18,6 +18,7 @@ struct RaySource::Scene {
   // Rays start this far back, so a point on the surface is found: well above a float
   // position's rounding even where the ray runs nearly along the triangle (1/50 of its slope).
   float epsilon = 0;
+  const SurfaceMesh* surfaces[2] = {nullptr, nullptr};  // the source's, read by the facing rule
 
   ~Scene() {
     if (scene) rtcReleaseScene(scene);
@@ -30,18 +31,42 @@ namespace {
 constexpr int kLanes = RaySource::kPacket;
 
 // The intersect calls' context, carrying each lane's query: which surface, and the nearest
-// hit accepted so far with its triangle (for the tie rule).
+// hit accepted so far with its triangle (for the tie rule); the surface's mesh and the way
+// the rays run (+1 along the asked direction, −1 against it), for the facing rule.
 struct QueryContext {
   RTCIntersectContext base;
   unsigned surface_geometry[kLanes];
+  const SurfaceMesh* surface_mesh[kLanes];
+  float way = 1.0f;
   float best_t[kLanes];
   unsigned best_triangle[kLanes];
 };
 
-// Accepts a candidate only on the asked-for surface, and at a distance equal to the best so
-// far only with a lower triangle index. Embree sets a lane's tfar to the candidate's distance
-// before the call (and restores it on a rejection); a single ray is lane 0, a packet's ray
-// is its lane, one at a time or several at once.
+// The facing rule: the source's own normal at the candidate (its vertex normals interpolated,
+// what every map reads there) faces the asked direction's side. A surface seen from its back
+// (the far wall of a groove the LOD spans, a fold) would bake a normal pointing into the rock
+// and colours from the wrong side; the nearest surface facing the same way is the one the LOD
+// stands for, and a texel with none keeps the LOD's own values (a miss).
+bool facesTheAskedWay(const QueryContext& query, const RTCFilterFunctionNArguments* args, unsigned i,
+                      unsigned triangle) {
+  const SurfaceMesh& m = *query.surface_mesh[i];
+  const auto& tri = m.triangles[triangle];
+  const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+  const float w[3] = {1.0f - u - v, u, v};
+  const float d[3] = {RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                      RTCRayN_dir_z(args->ray, args->N, i)};
+  float along = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    const auto& n = m.normals[tri[std::size_t(c)]];
+    along += w[c] * (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]);
+  }
+  return query.way * along > 0.0f;
+}
+
+// Accepts a candidate only on the asked-for surface, facing the asked way, and at a distance
+// equal to the best so far only with a lower triangle index. Embree sets a lane's tfar to the
+// candidate's distance before the call (and restores it on a rejection); a single ray is lane
+// 0, a packet's ray is its lane, one at a time or several at once.
 void tieBreak(const RTCFilterFunctionNArguments* args) {
   auto* query = reinterpret_cast<QueryContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
@@ -50,7 +75,8 @@ void tieBreak(const RTCFilterFunctionNArguments* args) {
     const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
     const float t = RTCRayN_tfar(args->ray, args->N, i);
     if (geometry != query->surface_geometry[i] ||
-        !(t < query->best_t[i] || (t == query->best_t[i] && triangle < query->best_triangle[i]))) {
+        !(t < query->best_t[i] || (t == query->best_t[i] && triangle < query->best_triangle[i])) ||
+        !facesTheAskedWay(*query, args, i, triangle)) {
       args->valid[i] = 0;
       continue;
     }
@@ -104,6 +130,7 @@ RaySource::RaySource(const AssetMeshes& source) : scene_(std::make_unique<Scene>
     const SurfaceMesh& m = *surfaces[i];
     for (const auto& p : m.positions)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(p[k])), hi[k] = std::max(hi[k], double(p[k]));
+    s.surfaces[i] = &m;
     if (!m.triangles.empty()) s.geometry[i] = addSurface(s.device, s.scene, m);
   }
   rtcCommitScene(s.scene);
@@ -134,6 +161,8 @@ SourceHit RaySource::nearestAlong(int surface, const std::array<float, 3>& origi
     rtcInitIntersectContext(&query.base);
     query.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     query.surface_geometry[0] = s.geometry[surface];
+    query.surface_mesh[0] = s.surfaces[surface];
+    query.way = sign;
     query.best_t[0] = std::numeric_limits<float>::infinity();
     query.best_triangle[0] = RTC_INVALID_GEOMETRY_ID;
     RTCRayHit rh;
@@ -178,9 +207,11 @@ void RaySource::nearestAlong(int count, const int* surface, const std::array<flo
     QueryContext query;
     rtcInitIntersectContext(&query.base);
     query.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    query.way = sign;
     alignas(32) RTCRayHit8 rh;
     for (int i = 0; i < kLanes; ++i) {
       query.surface_geometry[i] = s.geometry[valid[i] ? surface[i] : 0];
+      query.surface_mesh[i] = s.surfaces[valid[i] ? surface[i] : 0];
       query.best_t[i] = std::numeric_limits<float>::infinity();
       query.best_triangle[i] = RTC_INVALID_GEOMETRY_ID;
       const std::array<float, 3> o = i < count ? origin[i] : std::array<float, 3>{0, 0, 0};

@@ -514,6 +514,48 @@ TEST(TextureSet, BandedMapsEqualWholeMapsAtAnyBandHeight) {
   }
 }
 
+// A surface seen from its back is passed through (ray_source.h): a LOD point between an
+// overhang's underside just above it (facing down, away from the LOD's up normal) and the rock
+// surface further below (facing up) takes the surface below, one ray at a time and in a packet.
+TEST(RaySource, PassesThroughASurfaceSeenFromItsBack) {
+  AssetMeshes source;
+  SurfaceMesh& m = source.rock;
+  m.name = "rock";
+  const auto quad = [&m](float z, float nz) {
+    const auto base = std::uint32_t(m.positions.size());
+    for (const auto& xy : {std::array<float, 2>{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+      m.positions.push_back({xy[0], xy[1], z});
+      m.normals.push_back({0, 0, nz});
+    }
+    if (nz > 0)
+      m.triangles.insert(m.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
+    else
+      m.triangles.insert(m.triangles.end(), {{base, base + 2, base + 1}, {base, base + 3, base + 2}});
+  };
+  quad(0.01f, -1.0f);  // the underside of an overhang, 0.01 above the LOD point
+  quad(-0.03f, 1.0f);  // the rock surface, 0.03 below it
+  const RaySource rays(source);
+  const std::array<float, 3> origin{0.1f, 0.2f, 0.0f}, up{0, 0, 1};
+  const SourceHit one = rays.nearestAlong(0, origin, up, 0.5f);
+  ASSERT_TRUE(one.hit);
+  EXPECT_NEAR(one.distance, -0.03f, 1e-4f);  // the nearer hit ahead faces away from the LOD
+  EXPECT_GE(one.triangle, 2u);
+
+  const int surface[RaySource::kPacket] = {0, 0, 0};
+  const std::array<float, 3> origins[RaySource::kPacket] = {origin, {-0.4f, 0.3f, 0.0f}, {0.2f, 0.1f, -0.2f}};
+  const std::array<float, 3> directions[RaySource::kPacket] = {up, up, {0, 0, -1}};
+  SourceHit packet[RaySource::kPacket];
+  rays.nearestAlong(3, surface, origins, directions, 0.5f, packet);
+  ASSERT_TRUE(packet[0].hit && packet[1].hit);
+  EXPECT_NEAR(packet[0].distance, -0.03f, 1e-4f);
+  EXPECT_NEAR(packet[1].distance, -0.03f, 1e-4f);
+  // Asked for a surface facing down from below both: the rock surface's back is passed through
+  // to the overhang's underside.
+  ASSERT_TRUE(packet[2].hit);
+  EXPECT_NEAR(packet[2].distance, -0.21f, 1e-4f);
+  EXPECT_LT(packet[2].triangle, 2u);
+}
+
 // Any texel's hit is found without a scan of its row, in every block of the row.
 TEST(TraceTexels, HitIndexCountsTheCoveredTexelsBeforeTheTexel) {
   const AssetMeshes& source = test::weatheredRock().meshes;
