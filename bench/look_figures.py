@@ -14,9 +14,10 @@ chunks by hand, the PNGs through oiiotool), and prints one JSON line of figures:
                     over LOD0's rock vertices
   lamination_deg    with --beds STRIKE,DIP (world, z up; the preset's geology fixed): the angle
                     between the dominant direction of the detail a client shades with (LOD0's
-                    normal map on its frame, less its mean within two voxels) on steep rock and the
-                    beds' normal projected onto the surface; the ridges follow the beds' trace on
-                    the face when it is small
+                    normal map on its frame, texel by texel, less its mean within a voxel either
+                    way) on steep rock and the beds' normal projected onto the surface; the ridges
+                    follow the beds' trace on the face when it is small. lamination_coherence: how
+                    directional the detail is (0 none, 1 all one way)
   base_vs_vertex    per LOD, the mean absolute difference (linear) between its base-colour map at
                     its vertices and the colour of the nearest vertex of LOD0 in rock.ply
 
@@ -175,47 +176,89 @@ def bed_normal(strike, dip):
     return np.array([math.sin(d) * right[0], math.sin(d) * right[1], math.cos(d)])
 
 
-def lamination_deg(rock, normal_map, beds, h):
-    """The detail's dominant direction on steep rock against the beds' trace. The detail normal is
-    what a client shades with, the normal map on LOD0's frame, less its mean within two voxels
-    (LOD0 keeps relief coarser than its error bound in its own shape, finer relief is in the map)."""
+def rock_triangles(path):
+    """LOD0's rock attributes and its triangles (vertex indices, n × 3)."""
+    doc, binary = read_glb(path)
+    for mesh in doc["meshes"]:
+        if mesh["name"].startswith("rock"):
+            prim = mesh["primitives"][0]
+            attributes = {name: accessor(doc, binary, index).astype(np.float64)
+                          for name, index in prim["attributes"].items()}
+            return attributes, accessor(doc, binary, prim["indices"]).astype(np.int64).reshape(-1, 3)
+    raise SystemExit(f"{path}: no rock mesh")
+
+
+def box_mean(image, r):
+    """Each texel's mean over the (2r + 1)² texels around it, per channel, edges clamped."""
+    c = np.cumsum(np.cumsum(np.pad(image, ((r + 1, r), (r + 1, r), (0, 0)), mode="edge"), 0), 1)
+    k = 2 * r + 1
+    return (c[k:, k:] - c[:-k, k:] - c[k:, :-k] + c[:-k, :-k]) / (k * k)
+
+
+def lamination_deg(rock_glb, normal_map, beds, h):
+    """The detail's dominant direction on steep rock against the beds' normal on the face, read
+    texel by texel: every covered texel of LOD0's atlas gets the normal a client shades with (the
+    map on LOD0's interpolated frame, in world space), less its mean over the texels within a
+    voxel either way (the detail at the laminae's scale); its component in the surface, against
+    the beds' normal projected onto the surface, gives a doubled angle summed over texels weighted
+    by the detail's strength. Ridges along the beds' trace tilt the normal across them: 0°."""
+    rock, tris = rock_triangles(rock_glb)
+    nm = normal_map[..., :3] * 2 - 1
+    size = nm.shape[0]
+    P, N, UV = rock["POSITION"], rock["NORMAL"], rock["TEXCOORD_0"]
+    T, W = rock["TANGENT"][:, :3], rock["TANGENT"][:, 3]
+    ea, eb = P[tris[:, 1]] - P[tris[:, 0]], P[tris[:, 2]] - P[tris[:, 0]]
+    face = np.cross(ea, eb)
+    ua, ub = UV[tris[:, 1]] - UV[tris[:, 0]], UV[tris[:, 2]] - UV[tris[:, 0]]
+    uv_area = 0.5 * np.abs(ua[:, 0] * ub[:, 1] - ua[:, 1] * ub[:, 0]) * size * size
+    texel = math.sqrt(0.5 * np.linalg.norm(face, axis=1).sum() / uv_area.sum())  # world units a texel
+    r = max(1, int(round(h / texel)))
+    face /= np.maximum(np.linalg.norm(face, axis=1, keepdims=True), 1e-12)
+    shaded = np.zeros((size, size, 3))
+    frame_n = np.zeros((size, size, 3))
+    steep = np.zeros((size, size), bool)
+    for t, (i0, i1, i2) in enumerate(tris):
+        q = UV[[i0, i1, i2]] * size
+        det = (q[1, 0] - q[0, 0]) * (q[2, 1] - q[0, 1]) - (q[1, 1] - q[0, 1]) * (q[2, 0] - q[0, 0])
+        if abs(det) < 1e-12:
+            continue
+        lo = np.maximum(np.floor(q.min(0)).astype(int), 0)
+        hi = np.minimum(np.ceil(q.max(0)).astype(int), size - 1)
+        xs, ys = (a.ravel() for a in np.meshgrid(np.arange(lo[0], hi[0] + 1), np.arange(lo[1], hi[1] + 1)))
+        px, py = xs + 0.5, ys + 0.5
+        w1 = ((px - q[0, 0]) * (q[2, 1] - q[0, 1]) - (py - q[0, 1]) * (q[2, 0] - q[0, 0])) / det
+        w2 = ((q[1, 0] - q[0, 0]) * (py - q[0, 1]) - (q[1, 1] - q[0, 1]) * (px - q[0, 0])) / det
+        inside = (w1 >= 0) & (w2 >= 0) & (w1 + w2 <= 1)
+        if not inside.any():
+            continue
+        w1, w2, xs, ys = w1[inside], w2[inside], xs[inside], ys[inside]
+        w0 = 1 - w1 - w2
+        n = w0[:, None] * N[i0] + w1[:, None] * N[i1] + w2[:, None] * N[i2]
+        tg = w0[:, None] * T[i0] + w1[:, None] * T[i1] + w2[:, None] * T[i2]
+        n /= np.linalg.norm(n, axis=1, keepdims=True)
+        tg /= np.linalg.norm(tg, axis=1, keepdims=True)
+        bt = np.cross(n, tg) * W[i0]
+        m = nm[ys, xs]
+        v = m[:, 0:1] * tg + m[:, 1:2] * bt + m[:, 2:3] * n
+        shaded[ys, xs] = v / np.linalg.norm(v, axis=1, keepdims=True)
+        frame_n[ys, xs] = n
+        steep[ys, xs] = abs(face[t, 1]) < math.cos(math.radians(60))
+    covered = (np.linalg.norm(frame_n, axis=2) > 0).astype(float)[..., None]
+    share = box_mean(covered, r)[..., 0]
+    detail = shaded - box_mean(shaded, r) / np.maximum(share, 1e-9)[..., None]
+    keep = steep & (share > 0.6)  # texels whose window lies mostly on the atlas's charts
+    n, g = frame_n[keep], detail[keep]
+    g -= (g * n).sum(1, keepdims=True) * n
     n_world = bed_normal(*beds)
     n_gltf = np.array([n_world[0], n_world[2], -n_world[1]])
-    N = rock["NORMAL"]
-    T = rock["TANGENT"][:, :3]
-    B = np.cross(N, T) * rock["TANGENT"][:, 3:4]
-    t = sample(normal_map, rock["TEXCOORD_0"]) * 2 - 1
-    shaded = t[:, 0:1] * T + t[:, 1:2] * B + t[:, 2:3] * N
-    shaded /= np.linalg.norm(shaded, axis=1, keepdims=True)
-    p = rock["POSITION"]
-    cell = 2 * h
-    keys = np.floor(p / cell).astype(np.int64)
-    buckets = {}
-    for i, k in enumerate(map(tuple, keys)):
-        buckets.setdefault(k, []).append(i)
-    steep = np.nonzero(np.abs(N[:, 1]) < math.cos(math.radians(60)))[0]
-    e_all = n_gltf - np.outer(N @ n_gltf, np.ones(3)) * N
-    c_sum = s_sum = 0.0
-    used = 0
-    for i in steep[:: max(1, len(steep) // 20000)]:
-        e = e_all[i]
-        if np.linalg.norm(e) < 0.3:
-            continue
-        k = keys[i]
-        near = [j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
-                for j in buckets.get((k[0] + dx, k[1] + dy, k[2] + dz), ())]
-        near = np.array(near)
-        near = near[np.linalg.norm(p[near] - p[i], axis=1) <= cell]
-        if len(near) < 6:
-            continue
-        g = shaded[i] - shaded[near].mean(axis=0)
-        g -= N[i] * (g @ N[i])
-        e = e / np.linalg.norm(e)
-        c, s = g @ e, np.cross(e, g) @ N[i]
-        c_sum += c * c - s * s
-        s_sum += 2 * s * c
-        used += 1
-    return float(abs(math.degrees(0.5 * math.atan2(s_sum, c_sum)))), used
+    e = n_gltf[None, :] - (n @ n_gltf)[:, None] * n
+    length = np.linalg.norm(e, axis=1)
+    ok = length > 0.3
+    e, g, n = e[ok] / length[ok][:, None], g[ok], n[ok]
+    c, s = (g * e).sum(1), (np.cross(e, g) * n).sum(1)
+    c2, s2 = (c * c - s * s).sum(), (2 * s * c).sum()
+    coherence = math.hypot(c2, s2) / max((c * c + s * s).sum(), 1e-30)
+    return float(abs(math.degrees(0.5 * math.atan2(s2, c2)))), float(coherence), int(ok.sum())
 
 
 def main():
@@ -238,8 +281,8 @@ def main():
     out["varnish_age_rho"] = spearman(g[:, 1], g[:, 0])
     if args.beds:
         strike, dip = (float(x) for x in args.beds.split(","))
-        out["lamination_deg"], out["lamination_vertices"] = lamination_deg(
-            rock, read_map(maps[("normal", 0)]), (strike, dip), h)
+        out["lamination_deg"], out["lamination_coherence"], out["lamination_texels"] = lamination_deg(
+            os.path.join(args.asset, "rock.glb"), read_map(maps[("normal", 0)]), (strike, dip), h)
     ply = os.path.join(args.asset, "rock.ply")
     if os.path.exists(ply):
         p0, c0 = read_ply_colours(ply)
