@@ -16,6 +16,8 @@ window.studio = {
   ready: false,
   get meshVersion() { return state.mesh.version; },
   get rockTriangles() { return state.mesh.triangles ?? 0; },
+  // The final bake's view once loaded: {shown, triangles, textured, history} (shown 0: none yet).
+  get finalView() { const f = state.final; return { shown: f.shown, triangles: f.triangles, textured: f.textured, history: f.history }; },
   // Page coordinates of durability point i.
   durabilityPointPage(i) {
     const rect = $('durability-graph').getBoundingClientRect();

@@ -117,6 +117,20 @@ Response postBake(Studio& studio, const Request&, const json&) {
   return http::jsonResponse({{"asset_dir", asset_dir.string()}}, 202);
 }
 
+// GET /api/final/<file>: LOD0's GLB and its maps from the last final bake that finished, for the
+// page's final view. Not under the studio's lock: the bake's status has a lock of its own, and the
+// files are the finished bake's.
+Response getFinalFile(const Studio& studio, const Request& request) {
+  const BakeStatus bake = studio.bake.status();
+  if (bake.state != "done")
+    throw HttpError(404, "no final bake has finished" +
+                             (bake.state == "idle" ? std::string() : " (the last one is " + bake.state + ")") +
+                             ": press Bake final and wait for it to finish");
+  std::optional<Response> file = http::fileResponse(bake.asset_dir, request.matches[1]);
+  if (!file) throw HttpError(404, request.matches[1] + " is not in the final bake's folder " + bake.asset_dir);
+  return std::move(*file);
+}
+
 // An endpoint with its request's JSON body (null when it takes none).
 using Endpoint = Response (*)(Studio&, const Request&, const json& body);
 enum class Body { None, Required, Optional };  // Optional: an empty body is {}
@@ -154,6 +168,8 @@ std::vector<http::Route> studioRoutes(Studio& studio, const fs::path& web_root) 
       {"GET", "/api/rock\\.vdb", locked(studio, getRockVdb)},
       {"GET", "/api/mesh", locked(studio, getMesh)},
       {"POST", "/api/bake", locked(studio, postBake, Body::Optional)},
+      {"GET", R"(/api/final/(rock\.glb|textures/[A-Za-z0-9_.-]+\.png))",
+       [&studio](const Request& request) { return getFinalFile(studio, request); }},
       // The page and its pinned JavaScript; nothing else.
       {"GET", "/",
        [web_root](const Request&) {

@@ -35,9 +35,9 @@ struct Studio {
   std::map<Palette, std::pair<std::uint64_t, std::shared_ptr<const std::string>>> meshes;
 };
 
-// GET /api/state, /api/rock.vdb, /api/mesh; POST /api/control, /api/edit,
-// /api/save, /api/bake; the page from `web_root` (/, /studio.css, /js/*.js) and
-// the pinned three.js from web_root/node_modules/three (/vendor/three/...).
+// GET /api/state, /api/rock.vdb, /api/mesh, /api/final/… (the last finished final bake's
+// rock.glb and textures/*.png); POST /api/control, /api/edit, /api/save, /api/bake; the page from `web_root` (/,
+// /studio.css, /js/*.js) and the pinned three.js from web_root/node_modules/three (/vendor/three/...).
 std::vector<http::Route> studioRoutes(Studio& studio, const std::filesystem::path& web_root);
 
 }  // namespace rockbake

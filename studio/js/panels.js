@@ -5,7 +5,7 @@ import { $, showMessage } from './dom.js';
 import { state } from './state.js';
 import { fillEditors } from './editors.js';
 import { drawVolumePlot } from './graphs.js';
-import { showColluvium, updateMesh } from './view.js';
+import { showColluvium, showFinal, showFinalBake, updateMesh } from './view.js';
 
 // The panels from a new state (`server`: the state as the server sent it).
 export function showServerState(server) {
@@ -27,11 +27,22 @@ export function showServerState(server) {
   if (!$('save-name').value) $('save-name').value = `${server.preset.name}-edited`;
   $('bake-progress').value = server.bake.progress;
   $('bake-status').textContent = server.bake.state === 'idle' ? '' : `${server.bake.state}: ${server.bake.message}`;
+  noticeFinishedBake(server.bake.state);
   if (server.problem && server.problem !== state.problemShown) showMessage(server.problem);  // why playing stopped
   state.problemShown = server.problem;
   const focus = document.activeElement?.tagName;
   if (focus !== 'INPUT' && focus !== 'SELECT') fillEditors();
   drawVolumePlot();
+}
+
+// A bake that finishes makes the final view available, and reloads it when it is the one shown.
+function noticeFinishedBake(bakeState) {
+  const finished = bakeState === 'done' && state.bakeState !== 'done';
+  state.bakeState = bakeState;
+  if (!finished) return;
+  state.final.done += 1;
+  $('view-mode').querySelector('option[value="final"]').disabled = false;
+  if ($('view-mode').value === 'final') showFinalBake(state.final.done);
 }
 
 function setupSaveAndBake() {
@@ -78,5 +89,10 @@ export function setupTransport() {
   $('run-until-go').addEventListener('click', () => control({ run_until: Number($('run-until').value) }));
   $('palette').addEventListener('change', updateMesh);
   $('show-colluvium').addEventListener('change', (e) => showColluvium(e.target.checked));
+  $('view-mode').addEventListener('change', (e) => {
+    const final = e.target.value === 'final';
+    if (final && state.final.shown !== state.final.done) showFinalBake(state.final.done);
+    else showFinal(final);
+  });
   setupSaveAndBake();
 }

@@ -3,6 +3,7 @@
 // the graphs beside it share the rock's height scale.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { $, showMessage } from './dom.js';
 import { state } from './state.js';
 
@@ -57,7 +58,70 @@ export function renderView() {
   renderer.render(scene, camera);
 }
 
-export function showColluvium(visible) { colluviumMesh.visible = visible; }
+export function showColluvium(visible) {
+  colluviumMesh.visible = visible;
+  if (finalModel) finalModel.traverse((o) => { if (o.isMesh && isColluvium(o)) o.visible = visible; });
+}
+
+// The final bake's LOD0 as its GLB has it (GET /api/final/rock.glb, the maps beside it): the look
+// the bake made on its refined surface, which the live preview does not have (docs/studio.md).
+// glTF is y-up and in metres; the view is z-up in world units (units_per_meter of them a metre).
+let finalModel = null;
+// The rock's and the colluvium's meshes by their names, under every delivery profile's prefixes
+// (rock_lod0 or SM_<name>_rock_lod0; materials <name>_rock or M_<name>_rock).
+const named = (o, part) => new RegExp(`(^|_)${part}(_lod\\d+)?$`).test(o.name) || new RegExp(`(^|_)${part}$`).test(o.material?.name ?? '');
+const isColluvium = (o) => named(o, 'colluvium');
+
+export async function showFinalBake(done) {
+  const final = state.final;
+  if (final.loading) return;
+  final.loading = true;
+  try {
+    const gltf = await new GLTFLoader().loadAsync(`/api/final/rock.glb?bake=${done}`);
+    const model = new THREE.Group();
+    model.add(gltf.scene);
+    model.rotation.x = Math.PI / 2;
+    model.scale.setScalar(state.server.preset.units_per_meter ?? 1);
+    // The bake's meshes are about its footprint's centre on the ground (docs/meshes.md): stand its
+    // rock where the live preview's rock stands.
+    model.updateMatrixWorld(true);
+    const baked = new THREE.Box3();
+    gltf.scene.traverse((o) => { if (o.isMesh && named(o, 'rock')) baked.expandByObject(o); });
+    rockMesh.geometry.computeBoundingBox();
+    const live = rockMesh.geometry.boundingBox;
+    if (!baked.isEmpty() && !live.isEmpty()) {
+      const bc = baked.getCenter(new THREE.Vector3()), lc = live.getCenter(new THREE.Vector3());
+      model.position.set(lc.x - bc.x, lc.y - bc.y, live.min.z - baked.min.z);
+    }
+    if (finalModel) scene.remove(finalModel);
+    finalModel = model;
+    scene.add(model);
+    let triangles = 0, textured = false, history = false;
+    gltf.scene.traverse((o) => {
+      if (!o.isMesh || !named(o, 'rock')) return;
+      const g = o.geometry;
+      triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
+      textured ||= Boolean(o.material.map);
+      history ||= Boolean(g.attributes._history);
+    });
+    Object.assign(final, { shown: done, triangles, textured, history });
+    showColluvium($('show-colluvium').checked);
+    showFinal(true);
+  } catch (e) {
+    showMessage(`cannot show the final bake: ${e.message}`);
+    showFinal(false);
+    $('view-mode').value = 'live';
+  } finally {
+    final.loading = false;
+  }
+}
+
+// The final bake's model in place of the live preview, or the live preview back.
+export function showFinal(on) {
+  if (finalModel) finalModel.visible = on;
+  rockMesh.visible = !on;
+  colluviumMesh.visible = !on && $('show-colluvium').checked;
+}
 
 // Binary preview mesh (docs/studio.md, GET /api/mesh): "RBPM", version, cycle, then
 // rock and colluvium: vertex count, triangle count, positions, linear RGB colours, indices.
@@ -122,10 +186,19 @@ export function altitudeToPageY(a) {
   return rect.top + (1 - (p.y + 1) / 2) * rect.height;
 }
 
-// Page rectangle the rock's bounds cover in the view, and the background colour.
+// Page rectangle the rock's bounds cover in the view (the final bake's when it is shown), and the
+// background colour.
 export function rockScreenBox() {
-  rockMesh.geometry.computeBoundingBox();
-  const box = rockMesh.geometry.boundingBox, rect = renderer.domElement.getBoundingClientRect();
+  let box;
+  if (finalModel && finalModel.visible) {
+    finalModel.updateMatrixWorld(true);
+    box = new THREE.Box3();
+    finalModel.traverse((o) => { if (o.isMesh && named(o, 'rock')) box.expandByObject(o); });
+  } else {
+    rockMesh.geometry.computeBoundingBox();
+    box = rockMesh.geometry.boundingBox;
+  }
+  const rect = renderer.domElement.getBoundingClientRect();
   let x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
   for (let i = 0; i < 8; ++i) {
     const p = new THREE.Vector3(i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z).project(camera);

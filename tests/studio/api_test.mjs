@@ -125,6 +125,9 @@ try {
     'the preview mesh has the rock');
 
   // Bake final: the normal bake of what is on screen, at the preset's own resolution, with progress.
+  const early = await api(url, '/api/final/rock.glb');
+  ok(early.status === 404 && early.json.error.startsWith('no final bake has finished'),
+    `the final view's GLB before any bake gets 404 saying what to do: ${early.json.error}`);
   const now = (await api(url, '/api/state')).json;
   const started = await api(url, '/api/bake', {});
   ok(started.status === 202 && started.json.asset_dir === path.join(finalOut, 'goblin'), `bake final starts (${started.status})`);
@@ -142,6 +145,14 @@ try {
   const asset = path.join(finalOut, 'goblin');
   for (const f of ['manifest.json', 'asset.json', 'rock.glb', 'rock.vdb', 'render.png'])
     ok(fs.existsSync(path.join(asset, f)), `bake final writes ${f}`);
+  // The page's final view reads the finished bake's LOD0 and its maps, and nothing else there.
+  for (const f of ['rock.glb', 'textures/goblin_BaseColor.png', 'textures/goblin_History.png']) {
+    const served = await api(url, `/api/final/${f}`);
+    ok(served.status === 200 && Buffer.compare(served.body, fs.readFileSync(path.join(asset, f))) === 0,
+      `GET /api/final/${f} is the bake's file, byte for byte (${served.status})`);
+  }
+  for (const f of ['asset.json', 'rock.vdb', 'textures/goblin_Height.exr', 'textures/..%2Fasset.json', 'textures/missing.png'])
+    ok((await api(url, `/api/final/${f}`)).status === 404, `GET /api/final/${f} gets 404`);
   const manifest = JSON.parse(fs.readFileSync(path.join(asset, 'stats.json'), 'utf8'));
   ok(manifest.preset.grid.resolution === 96 && manifest.preset.time === now.time,
     `bake final bakes the preset's own resolution at the studio's time (${manifest.preset.grid.resolution}, ${manifest.preset.time})`);

@@ -1,7 +1,8 @@
 // The studio page in a real browser (Debian's chromium, headless, driven by
 // puppeteer-core): the 3-D view draws the rock, a durability point dragged
 // while the rock weathers becomes a keyframe, run to a time, save from the
-// page; then `bake --no-mesh` of the saved preset equals GET /api/rock.vdb.
+// page; then `bake --no-mesh` of the saved preset equals GET /api/rock.vdb; Bake final from the
+// page, and the final view draws its LOD0 with its maps and the look's History.
 // Usage: node browser_test.mjs ROCKBAKE SOURCE_DIR [SCREENSHOT.png] [RESOLUTION]
 import fs from 'node:fs';
 import os from 'node:os';
@@ -16,7 +17,7 @@ const resolution = Number(resolutionArg || 32);
 const dir = presetFolder(sourceDir, 12);  // long enough to edit while it plays
 const screenshot = screenshotArg || path.join(dir, 'studio.png');
 const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'rockbake-chromium-'));
-const studio = await startStudio(rockbake, [path.join(dir, 'goblin.yaml'), '--resolution', String(resolution)]);
+const studio = await startStudio(rockbake, [path.join(dir, 'goblin.yaml'), '--resolution', String(resolution), '-o', path.join(dir, 'final')]);
 const url = studio.url;
 let passed = 0;
 let failure = null;
@@ -123,6 +124,46 @@ try {
   const baked = bakeVdb(rockbake, savedFile, resolution, path.join(dir, 'out'));
   ok(studioVdb.length > 1000 && Buffer.compare(studioVdb, baked) === 0,
     `bake --no-mesh --resolution ${resolution} of the saved preset equals GET /api/rock.vdb byte for byte (${baked.length} bytes)`);
+
+  // The final view: unavailable until a bake finishes, then the bake's LOD0 with its look.
+  ok(await page.$eval('#view-mode option[value="final"]', (e) => e.disabled), 'the final view waits for a final bake');
+  await page.click('#bake');
+  await page.waitForFunction(() => document.querySelector('#bake-status').textContent.startsWith('done'), { timeout: 240000 });
+  await page.waitForFunction(() => !document.querySelector('#view-mode option[value="final"]').disabled, { timeout: 10000 });
+  const live = await page.evaluate(() => window.studio.rockScreenBox());
+  await page.select('#view-mode', 'final');
+  await page.waitForFunction(() => window.studio.finalView.shown > 0, { timeout: 60000 });
+  await sleep(300);
+  const view = await page.evaluate(() => window.studio.finalView);
+  ok(view.triangles > 10000 && view.textured && view.history,
+    `the final view shows the bake's LOD0 (${view.triangles} triangles) with its maps (${view.textured}) and the look's History (${view.history})`);
+  await page.screenshot({ path: screenshot.replace(/\.png$/, '-final.png') });
+  const finalBox = await page.evaluate(() => window.studio.rockScreenBox());
+  const overlap = Math.max(0, Math.min(live.x1, finalBox.x1) - Math.max(live.x0, finalBox.x0)) *
+    Math.max(0, Math.min(live.y1, finalBox.y1) - Math.max(live.y0, finalBox.y0));
+  const area = (b) => (b.x1 - b.x0) * (b.y1 - b.y0);
+  ok(overlap > 0.6 * Math.max(area(live), area(finalBox)),
+    `the final bake stands where the live preview stood, at its scale (screen boxes overlap ${(100 * overlap / Math.max(area(live), area(finalBox))).toFixed(0)}%)`);
+  const drawn = await page.evaluate(() => {
+    const box = window.studio.rockScreenBox();
+    const gl = document.querySelector('#view canvas');
+    const r = gl.getBoundingClientRect();
+    const c = document.createElement('canvas');
+    c.width = gl.width; c.height = gl.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(gl, 0, 0);
+    const sx = gl.width / r.width, sy = gl.height / r.height;
+    const X0 = Math.max(0, Math.round((box.x0 - r.left) * sx)), Y0 = Math.max(0, Math.round((box.y0 - r.top) * sy));
+    const X1 = Math.min(gl.width, Math.round((box.x1 - r.left) * sx)), Y1 = Math.min(gl.height, Math.round((box.y1 - r.top) * sy));
+    const d = ctx.getImageData(X0, Y0, X1 - X0, Y1 - Y0).data;
+    const bg = [parseInt(box.background.slice(1, 3), 16), parseInt(box.background.slice(3, 5), 16), parseInt(box.background.slice(5, 7), 16)];
+    let differ = 0;
+    for (let i = 0; i < d.length; i += 4)
+      if (Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 30) ++differ;
+    return differ / (d.length / 4);
+  });
+  ok(drawn > 0.3, `the final view draws the rock (${(100 * drawn).toFixed(0)}% of its box differs from the background)`);
+  ok(errors.length === 0, `the final view loads with no errors and no request outside the studio (${errors.join('; ')})`);
 } catch (e) {
   failure = e;
 }
