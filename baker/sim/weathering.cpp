@@ -116,6 +116,52 @@ class TrackedCells {
         if (g_.contains(p.x + o[0], p.y + o[1], p.z + o[2]))
           reevaluate(Cell(g_.index(p.x + o[0], p.y + o[1], p.z + o[2])), {p.x + o[0], p.y + o[1], p.z + o[2]});
     }
+    merge(added, any_removed, entered);
+  }
+
+  // update(changed, true) for a set that a neighbour can only bring a cell into by what it is now
+  // and take it out of by what it was: the rock under colluvium. A changed cell is re-tested; of
+  // its neighbours, a non-member joins without a test when `joins(changed cell, neighbour)` (rock
+  // next to colluvium), and a member is re-tested (it may have lost its only colluvium
+  // neighbour); any other neighbour cannot have changed. The same set as update(changed, true),
+  // at a full test only where membership may have changed.
+  template <typename Joins>
+  void updateAroundChanges(const std::vector<Cell>& changed, Joins joins) {
+    std::vector<Cell> added;
+    bool any_removed = false;
+    const auto set = [&](Cell c, bool now) {
+      if (now == flag(c)) return;
+      setFlag(c, now);
+      if (now)
+        added.push_back(c);
+      else
+        any_removed = true;
+    };
+    const std::ptrdiff_t sx = 1, sy = g_.nx, sz = std::ptrdiff_t(g_.nx) * g_.ny;
+    const auto nx = std::uint32_t(g_.nx), ny = std::uint32_t(g_.ny);
+    for (Cell c : changed) {
+      // coord() in 32-bit arithmetic (a Cell is 32 bits): this loop runs on every changed cell each cycle.
+      const std::uint32_t row = c / nx, z = row / ny;
+      const VoxelCoord p{int(c - row * nx), int(row - z * ny), int(z)};
+      set(c, member_(p.x, p.y, p.z));
+      const std::ptrdiff_t step[6] = {-sx, sx, -sy, sy, -sz, sz};
+      const bool inside[6] = {p.x > 0, p.x + 1 < g_.nx, p.y > 0, p.y + 1 < g_.ny, p.z > 0, p.z + 1 < g_.nz};
+      for (int i = 0; i < 6; ++i) {
+        if (!inside[i]) continue;
+        const Cell n = Cell(std::ptrdiff_t(c) + step[i]);
+        if (flag(n)) {
+          set(n, member_(p.x + kFaceNeighbours[i][0], p.y + kFaceNeighbours[i][1], p.z + kFaceNeighbours[i][2]));
+        } else if (joins(c, n)) {
+          set(n, true);
+        }
+      }
+    }
+    merge(added, any_removed, nullptr);
+  }
+
+ private:
+  // The cells that joined (sorted here) and whether any left, into the sorted list.
+  void merge(std::vector<Cell>& added, bool any_removed, std::vector<Cell>* entered) {
     std::sort(added.begin(), added.end());
     if (entered) *entered = added;
     if (any_removed) std::erase_if(cells_, [this](Cell c) { return !flag(c); });
@@ -126,7 +172,6 @@ class TrackedCells {
     }
   }
 
- private:
   bool flag(Cell c) const { return (flag_[c >> 6] >> (c & 63)) & 1u; }
   void setFlag(Cell c, bool on) {
     const std::uint64_t bit = std::uint64_t(1) << (c & 63);
@@ -163,6 +208,24 @@ struct ColluviumCell {
     return rock->material[rock->layout.index(x, y, z)] == Material::Colluvium;
   }
 };
+
+// Runs body(cell) over sorted `cells` in parallel, in chunks that never split an x-row of `nx`
+// cells, so that RowSpans writes from different chunks touch different rows (core/voxel_rock.h).
+template <typename Body>
+void forCellsByRow(const std::vector<Cell>& cells, int nx, Body body) {
+  constexpr std::size_t kChunk = 1024;
+  std::vector<std::size_t> bounds{0};
+  for (std::size_t at = kChunk; at < cells.size(); at += kChunk) {
+    const Cell row = cells[at - 1] / Cell(nx);
+    while (at < cells.size() && cells[at] / Cell(nx) == row) ++at;
+    if (at == cells.size()) break;
+    bounds.push_back(at);
+  }
+  bounds.push_back(cells.size());
+  tbb::parallel_for(std::size_t(0), bounds.size() - 1, [&](std::size_t i) {
+    for (std::size_t j = bounds[i]; j < bounds[i + 1]; ++j) body(cells[j]);
+  });
+}
 
 // The cells one cycle touches, gathered as its phases run.
 struct CycleCells {
@@ -490,19 +553,24 @@ void WeatheringSimulation::State::updateTracking(const std::vector<Cell>& change
 // at any thread count. Costs the cells that changed and the rock under colluvium.
 void WeatheringSimulation::State::recordHistory(const std::vector<Cell>& changed, const std::vector<Cell>& fell,
                                                 int at_cycle) {
-  covered.update(changed, true);
+  // Rock next to a cell that is colluvium now is under colluvium; nothing else joins from a neighbour.
+  covered.updateAroundChanges(changed, [m = rock.material.data()](Cell now, Cell neighbour) {
+    return m[now] == Material::Colluvium && m[neighbour] == Material::Rock;
+  });
+  const GridLayout& g = rock.layout;
   VoxelHistory& hist = rock.history;
   hist.cycles = at_cycle;
   const float k = float(at_cycle);
-  for (Cell c : at_cycle == 0 ? exposed.cells() : newly_exposed)
+  // Each cell's record is its own: written in parallel by rows, the same at any thread count.
+  forCellsByRow(at_cycle == 0 ? exposed.cells() : newly_exposed, g.nx, [&](Cell c) {
     if (hist.exposed[c] < 0.f) hist.exposed.set(c, k);
-  for (Cell c : covered.cells()) {
+  });
+  forCellsByRow(covered.cells(), g.nx, [&](Cell c) {
     hist.covered.set(c, k);
     hist.covered_for.set(c, hist.covered_for[c] + 1.f);
-  }
+  });
   if (fell.empty()) return;
   constexpr int kScarReach = 2;
-  const GridLayout& g = rock.layout;
   std::vector<Cell> moved = fell;
   std::sort(moved.begin(), moved.end());
   moved.erase(std::unique(moved.begin(), moved.end()), moved.end());

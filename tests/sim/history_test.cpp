@@ -157,6 +157,32 @@ TEST(History, ColluviumCoverIsCountedAndLastUntilTheEnd) {
   EXPECT_GE(once, under);
 }
 
+// The rock under colluvium is kept from the cells that change each cycle, not by a rescan: after
+// every cycle, exactly the rock with a face on colluvium records that cycle as its last under it.
+TEST(History, CoverIsRecordedExactlyWhereColluviumTouchesEachCycle) {
+  const Preset p = groundedCube();  // rockfall drops rock, moving its record; colluvium comes and goes
+  WeatheringSimulation simulation(buildInitialRock(resolveShape(p), p), p);
+  std::size_t touched = 0, left = 0;
+  while (!simulation.finished()) {
+    simulation.step();
+    const VoxelRock& rock = simulation.rock();
+    const GridLayout& g = rock.layout;
+    const float k = float(rock.history.cycles);
+    for (int z = 0; z < g.nz; ++z)
+      for (int y = 0; y < g.ny; ++y)
+        for (int x = 0; x < g.nx; ++x) {
+          const std::size_t c = g.index(x, y, z);
+          if (rock.material[c] != Material::Rock) continue;
+          const bool under = faceOnColluvium(rock, x, y, z);
+          ASSERT_EQ(rock.history.covered[c] == k, under) << x << ", " << y << ", " << z << " after cycle " << k;
+          touched += under;
+          left += !under && rock.history.covered_for[c] > 0;
+        }
+  }
+  EXPECT_GT(touched, 100u);
+  EXPECT_GT(left, 0u);  // some rock came out from under the colluvium
+}
+
 TEST(History, AResumeFromACheckpointRecordsTheSame) {
   const Preset p = groundedCube();
   const VoxelRock initial = buildInitialRock(resolveShape(p), p);
