@@ -131,14 +131,22 @@ int fileBits(const MapKind& kind, MapPrecision precision) {
   return precision == MapPrecision::Compact && kind.bits > 8 ? kind.bits / 2 : kind.bits;
 }
 
+// The height's step in a compact file (docs/textures.md §6): the largest power of two within
+// 1/256 of a voxel. Half floats near zero keep detail a thousand times finer than that, which
+// the refined surface does not have and ZIP cannot compress; a power of two stays exact in a
+// half. 0 (no step) without a voxel size.
+double compactHeightStep(double voxel_size) {
+  return voxel_size > 0 ? std::ldexp(1.0, int(std::floor(std::log2(voxel_size / 256.0)))) : 0.0;
+}
+
 // The writers of texture_files.h, by the map's pixel type.
-void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision,
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, const TextureSetRequest&,
               const TextureBands<std::uint8_t>& made) {
   writeTexturePng(file, size, kind.channels, std::string_view(kind.colour_space) == "srgb", rows, made);
 }
-void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision precision,
-              const TextureBands<std::uint16_t>& made) {
-  if (fileBits(kind, precision) == 16) return writeTexturePng(file, size, rows, made);
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows,
+              const TextureSetRequest& request, const TextureBands<std::uint16_t>& made) {
+  if (fileBits(kind, request.params.precision) == 16) return writeTexturePng(file, size, rows, made);
   // 8 bits, rounded to the nearest: 1/255 steps keep a normal within 0.23° (docs/textures.md §6).
   writeTexturePng(file, size, kind.channels, false, rows, [&made](int first, int last) {
     const TextureImage<std::uint16_t> wide = made(first, last);
@@ -149,9 +157,19 @@ void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, 
     return narrow;
   });
 }
-void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows, MapPrecision precision,
-              const TextureBands<float>& made) {
-  writeTextureExr(file, size, rows, made, fileBits(kind, precision) == 16);
+void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, int rows,
+              const TextureSetRequest& request, const TextureBands<float>& made) {
+  const bool half = fileBits(kind, request.params.precision) == 16;
+  const double step = half ? compactHeightStep(request.voxel_size) : 0.0;
+  if (step == 0.0) return writeTextureExr(file, size, rows, made, half);
+  writeTextureExr(
+      file, size, rows,
+      [&made, step](int first, int last) {
+        TextureImage<float> band = made(first, last);
+        for (float& v : band.pixels) v = float(std::round(v / step) * step);
+        return band;
+      },
+      true);
 }
 
 // Every LOD's atlas, side by side: each LOD has its own (docs/textures.md §7), and one atlas
@@ -201,7 +219,7 @@ void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, con
             band.first_row = first, band.last_row = last;
             return bake_map(band, inputs);
           };
-          writeMap(file, kind, size, rows, precision, bands);
+          writeMap(file, kind, size, rows, request, bands);
         },
         kind.bake);
     step(lod + " " + mapName(map) + " file");

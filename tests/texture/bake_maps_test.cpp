@@ -417,8 +417,16 @@ TEST(TextureSet, CompactPrecisionKeepsTheFullMapsWithinRounding) {
   const auto& h = half.plane("Y");
   const auto& f = whole.plane("Y");
   ASSERT_EQ(h.size(), f.size());
-  for (std::size_t i = 0; i < h.size(); ++i)
-    ASSERT_NEAR(h[i], f[i], std::abs(f[i]) / 1024 + 1e-7) << i;  // a half keeps 11 significant bits
+  // Rounded to steps of 1/256 of a voxel (a power of two: 2⁻¹² at h = 1/16), then to a half.
+  const double step = std::ldexp(1.0, -12);
+  std::size_t off_step = 0, finer = 0;
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    ASSERT_NEAR(h[i], f[i], step / 2 + std::abs(f[i]) / 1024 + 1e-7) << i;  // a half keeps 11 significant bits
+    off_step += std::abs(h[i]) < 0.5 && std::fmod(double(h[i]), step) != 0.0;
+    finer += std::fmod(double(f[i]), step) != 0.0;
+  }
+  EXPECT_EQ(off_step, 0u);
+  EXPECT_GT(finer, h.size() / 2);  // the float map has finer detail: the step did round
 }
 
 TEST(TextureSet, FilesByteIdenticalAtOneAndTwoThreads) {
