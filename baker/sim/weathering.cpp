@@ -549,8 +549,9 @@ void WeatheringSimulation::State::updateTracking(const std::vector<Cell>& change
 // The history of the state after cycle `at_cycle` (docs/model.md §14), with the rock under
 // colluvium brought up to date from the cells that changed: rock newly exposed to air
 // (all exposed rock at cycle 0), rock under colluvium, and scars, the standing exposed rock within
-// kScarReach voxels of a cell rockfall emptied. Serial and in cell order: the record is the same
-// at any thread count. Costs the cells that changed and the rock under colluvium.
+// kScarReach voxels of a cell rockfall emptied. Each cell's record depends on that cell alone
+// (the exposure and cover records are written in parallel by rows, the scars serially in cell
+// order): the same at any thread count. Costs the cells that changed and the rock under colluvium.
 void WeatheringSimulation::State::recordHistory(const std::vector<Cell>& changed, const std::vector<Cell>& fell,
                                                 int at_cycle) {
   // Rock next to a cell that is colluvium now is under colluvium; nothing else joins from a neighbour.

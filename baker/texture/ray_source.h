@@ -33,7 +33,7 @@ class RaySource {
   RaySource& operator=(const RaySource&) = delete;
 
   // The hit on `surface` nearest to `origin` along the line through it with unit `direction`,
-  // within `reach` both ways, on surface that faces the direction's side (its interpolated
+  // within `reach` both ways, on a surface that faces the direction's side (its interpolated
   // vertex normal has a positive component along `direction`: a surface seen from its back is
   // passed through); ahead wins a tie with behind.
   SourceHit nearestAlong(int surface, const std::array<float, 3>& origin, const std::array<float, 3>& direction,
