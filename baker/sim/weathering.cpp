@@ -119,12 +119,11 @@ class TrackedCells {
     merge(added, any_removed, entered);
   }
 
-  // update(changed, true) for a set that a neighbour can only bring a cell into by what it is now
-  // and take it out of by what it was: the rock under colluvium. A changed cell is re-tested; of
-  // its neighbours, a non-member joins without a test when `joins(changed cell, neighbour)` (rock
-  // next to colluvium), and a member is re-tested (it may have lost its only colluvium
-  // neighbour); any other neighbour cannot have changed. The same set as update(changed, true),
-  // at a full test only where membership may have changed.
+  // update(changed, true) for the rock under colluvium, testing only where membership may have
+  // changed: a changed cell is re-tested; a neighbour that is a member is re-tested (it may have
+  // lost its only colluvium neighbour); a neighbour that is not joins, untested, when
+  // `joins(changed cell, neighbour)` (rock next to what is colluvium now); no other neighbour can
+  // have changed. The same set as update(changed, true).
   template <typename Joins>
   void updateAroundChanges(const std::vector<Cell>& changed, Joins joins) {
     std::vector<Cell> added;
@@ -562,7 +561,6 @@ void WeatheringSimulation::State::recordHistory(const std::vector<Cell>& changed
   VoxelHistory& hist = rock.history;
   hist.cycles = at_cycle;
   const float k = float(at_cycle);
-  // Each cell's record is its own: written in parallel by rows, the same at any thread count.
   forCellsByRow(at_cycle == 0 ? exposed.cells() : newly_exposed, g.nx, [&](Cell c) {
     if (hist.exposed[c] < 0.f) hist.exposed.set(c, k);
   });

@@ -127,8 +127,13 @@ Response getFinalFile(const Studio& studio, const Request& request) {
                              (bake.state == "idle" ? std::string() : " (the last one is " + bake.state + ")") +
                              ": press Bake final and wait for it to finish");
   std::optional<Response> file = http::fileResponse(bake.asset_dir, request.matches[1]);
-  if (!file) throw HttpError(404, request.matches[1] + " is not in the final bake's folder " + bake.asset_dir);
-  return std::move(*file);
+  if (file) return std::move(*file);
+  const std::optional<fs::path> found = http::fileUnder(bake.asset_dir, request.matches[1]);
+  std::error_code error;
+  if (found && fs::file_size(*found, error) > http::kMaxStaticFileBytes && !error)
+    throw HttpError(413, request.matches[1] + " is larger than the " + std::to_string(http::kMaxStaticFileBytes >> 20) +
+                             " MiB the studio serves: open " + found->string() + " itself");
+  throw HttpError(404, request.matches[1] + " is not in the final bake's folder " + bake.asset_dir);
 }
 
 // An endpoint with its request's JSON body (null when it takes none).

@@ -25,7 +25,8 @@ struct SourceHit {
 class RaySource {
  public:
   // Triangles of source.rock (surface 0) and source.colluvium (surface 1). Positions are
-  // copied; the triangle lists are read in place, so `source` must outlive the RaySource.
+  // copied; the triangle lists and the normals (the facing rule's) are read in place, so
+  // `source` must outlive the RaySource.
   // Throws std::runtime_error if Embree fails.
   explicit RaySource(const AssetMeshes& source);
   ~RaySource();

@@ -133,8 +133,9 @@ int fileBits(const MapKind& kind, MapPrecision precision) {
 
 // The height's step in a compact file (docs/textures.md §6): the largest power of two within
 // 1/256 of a voxel. Half floats near zero keep detail a thousand times finer than that, which
-// the refined surface does not have and ZIP cannot compress; a power of two stays exact in a
-// half. 0 (no step) without a voxel size.
+// the refined surface does not have and ZIP cannot compress; multiples of a power of two are
+// exact in a half up to 2048 steps (beyond, the half's own rounding is the coarser). 0 (no
+// step) without a voxel size.
 double compactHeightStep(double voxel_size) {
   return voxel_size > 0 ? std::ldexp(1.0, int(std::floor(std::log2(voxel_size / 256.0)))) : 0.0;
 }
@@ -166,7 +167,7 @@ void writeMap(const std::filesystem::path& file, const MapKind& kind, int size, 
       file, size, rows,
       [&made, step](int first, int last) {
         TextureImage<float> band = made(first, last);
-        for (float& v : band.pixels) v = float(std::round(v / step) * step);
+        for (float& v : band.pixels) v = float(std::round(v / step) * step) + 0.0f;  // + 0: no −0
         return band;
       },
       true);

@@ -28,10 +28,12 @@
 namespace rockbake {
 
 struct TextureSetRequest {
-  TextureParams params;     // the preset's texture: block
-  std::uint64_t seed = 0;   // the preset's seed: occlusion rays and the colour's noise
-  double voxel_size = 0.0;  // the grid's h, world units: the per-voxel colour variation's scale (0: none)
-  bool varied = true;       // the rock's look (rock_look.h) on the palette; false: its colours exactly
+  TextureParams params;    // the preset's texture: block
+  std::uint64_t seed = 0;  // the preset's seed: occlusion rays and the colour's noise
+  // The grid's h, world units: the per-voxel colour variation's scale and the compact height's
+  // step (h/256 rounded down to a power of two); 0: neither.
+  double voxel_size = 0.0;
+  bool varied = true;  // the rock's look (rock_look.h) on the palette; false: its colours exactly
   // The ground plane's z in the meshes' frame when the asset stands on it: its hidden surface is
   // packed small (uv_atlas.h) and the mask's alpha is its ground contact (bake_maps.h). None: a
   // free-standing rock, neither.

@@ -12,8 +12,8 @@ export const state = {
   durabilityScale: 3,  // durability at the graph's right edge
   problemShown: '',    // the server's `problem` last shown (each is shown once)
   mesh: { version: -1, palette: '', loading: false },  // the preview mesh shown
-  // The final bake's view: how many bakes have finished since the page loaded (each reloads it),
-  // the one shown (0: none), and what it holds once loaded.
+  // The final bake's view: how many finished bakes the page has seen (one finished before it
+  // loaded counts; each reloads the view), the one shown (0: none), and what it holds once loaded.
   final: { done: 0, shown: 0, loading: false, triangles: 0, textured: false, history: false },
   bakeState: 'idle',   // the bake's state last seen, to notice one finishing
 };

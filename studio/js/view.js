@@ -59,8 +59,20 @@ export function renderView() {
 }
 
 export function showColluvium(visible) {
-  colluviumMesh.visible = visible;
+  colluviumMesh.visible = visible && !finalModel?.visible;
   if (finalModel) finalModel.traverse((o) => { if (o.isMesh && isColluvium(o)) o.visible = visible; });
+}
+
+// Frees a model's GPU buffers and textures (a final bake's LOD0 maps are up to 8K each).
+function dispose(model) {
+  model.traverse((o) => {
+    if (!o.isMesh) return;
+    o.geometry.dispose();
+    for (const material of [o.material].flat()) {
+      for (const value of Object.values(material)) if (value?.isTexture) value.dispose();
+      material.dispose();
+    }
+  });
 }
 
 // The final bake's LOD0 as its GLB has it (GET /api/final/rock.glb, the maps beside it): the look
@@ -72,18 +84,22 @@ let finalModel = null;
 const named = (o, part) => new RegExp(`(^|_)${part}(_lod\\d+)?$`).test(o.name) || new RegExp(`(^|_)${part}$`).test(o.material?.name ?? '');
 const isColluvium = (o) => named(o, 'colluvium');
 
+// Loads bake number `done` (state.final.done when it was asked for); shows it if the final view is
+// still the one chosen, and loads the newer bake if another finished meanwhile.
 export async function showFinalBake(done) {
   const final = state.final;
   if (final.loading) return;
   final.loading = true;
+  const chosen = () => $('view-mode').value === 'final';
   try {
     const gltf = await new GLTFLoader().loadAsync(`/api/final/rock.glb?bake=${done}`);
     const model = new THREE.Group();
     model.add(gltf.scene);
     model.rotation.x = Math.PI / 2;
     model.scale.setScalar(state.server.preset.units_per_meter ?? 1);
-    // The bake's meshes are about its footprint's centre on the ground (docs/meshes.md): stand its
-    // rock where the live preview's rock stands.
+    // The bake's meshes are about its footprint's centre on the ground (docs/meshes.md): its rock
+    // stands where the live preview's rock stands, which is the rock it baked unless the run has
+    // moved on since (then the two are side by side in time, not in space).
     model.updateMatrixWorld(true);
     const baked = new THREE.Box3();
     gltf.scene.traverse((o) => { if (o.isMesh && named(o, 'rock')) baked.expandByObject(o); });
@@ -93,7 +109,10 @@ export async function showFinalBake(done) {
       const bc = baked.getCenter(new THREE.Vector3()), lc = live.getCenter(new THREE.Vector3());
       model.position.set(lc.x - bc.x, lc.y - bc.y, live.min.z - baked.min.z);
     }
-    if (finalModel) scene.remove(finalModel);
+    if (finalModel) {
+      scene.remove(finalModel);
+      dispose(finalModel);
+    }
     finalModel = model;
     scene.add(model);
     let triangles = 0, textured = false, history = false;
@@ -105,14 +124,14 @@ export async function showFinalBake(done) {
       history ||= Boolean(g.attributes._history);
     });
     Object.assign(final, { shown: done, triangles, textured, history });
-    showColluvium($('show-colluvium').checked);
-    showFinal(true);
+    showFinal(chosen());
   } catch (e) {
     showMessage(`cannot show the final bake: ${e.message}`);
     showFinal(false);
     $('view-mode').value = 'live';
   } finally {
     final.loading = false;
+    if (chosen() && final.done !== final.shown && final.shown !== 0) showFinalBake(final.done);
   }
 }
 
@@ -120,7 +139,7 @@ export async function showFinalBake(done) {
 export function showFinal(on) {
   if (finalModel) finalModel.visible = on;
   rockMesh.visible = !on;
-  colluviumMesh.visible = !on && $('show-colluvium').checked;
+  showColluvium($('show-colluvium').checked);
 }
 
 // Binary preview mesh (docs/studio.md, GET /api/mesh): "RBPM", version, cycle, then

@@ -151,8 +151,12 @@ try {
     ok(served.status === 200 && Buffer.compare(served.body, fs.readFileSync(path.join(asset, f))) === 0,
       `GET /api/final/${f} is the bake's file, byte for byte (${served.status})`);
   }
+  // (A parent step is refused by the route's pattern before the folder rule is reached.)
   for (const f of ['asset.json', 'rock.vdb', 'textures/goblin_Height.exr', 'textures/..%2Fasset.json', 'textures/missing.png'])
     ok((await api(url, `/api/final/${f}`)).status === 404, `GET /api/final/${f} gets 404`);
+  // A link in the folder that leads out of it is not followed.
+  fs.symlinkSync(path.join(dir, 'goblin.yaml'), path.join(asset, 'textures', 'outside.png'));
+  ok((await api(url, '/api/final/textures/outside.png')).status === 404, 'a link out of the bake\'s folder gets 404');
   const manifest = JSON.parse(fs.readFileSync(path.join(asset, 'stats.json'), 'utf8'));
   ok(manifest.preset.grid.resolution === 96 && manifest.preset.time === now.time,
     `bake final bakes the preset's own resolution at the studio's time (${manifest.preset.grid.resolution}, ${manifest.preset.time})`);

@@ -142,8 +142,10 @@ try {
   const overlap = Math.max(0, Math.min(live.x1, finalBox.x1) - Math.max(live.x0, finalBox.x0)) *
     Math.max(0, Math.min(live.y1, finalBox.y1) - Math.max(live.y0, finalBox.y0));
   const area = (b) => (b.x1 - b.x0) * (b.y1 - b.y0);
+  // The view stands the bake's rock on the live rock's footprint, so this checks what the GLB
+  // brings: its size in metres back in world units, and y-up turned to z-up.
   ok(overlap > 0.6 * Math.max(area(live), area(finalBox)),
-    `the final bake stands where the live preview stood, at its scale (screen boxes overlap ${(100 * overlap / Math.max(area(live), area(finalBox))).toFixed(0)}%)`);
+    `the final bake shows at the live rock's size and upright (screen boxes overlap ${(100 * overlap / Math.max(area(live), area(finalBox))).toFixed(0)}%)`);
   const drawn = await page.evaluate(() => {
     const box = window.studio.rockScreenBox();
     const gl = document.querySelector('#view canvas');

@@ -366,7 +366,8 @@ TEST(TextureFiles, PngsReadBackSampleForSample) {
 }
 
 // texture.precision: compact stores the normals in 8 bits within half a degree of the 16-bit ones
-// full keeps, and the height in half floats within half-float rounding of the 32-bit one;
+// full keeps, and the height in half floats, in steps of 1/256 voxel, within half a step and
+// half-float rounding of the 32-bit one;
 // directx_normals inverts the green channel and nothing else.
 TEST(TextureSet, CompactPrecisionKeepsTheFullMapsWithinRounding) {
   const AssetMeshes& source = test::weatheredRock().meshes;
