@@ -38,9 +38,11 @@ def accessor(doc, binary, index):
     a = doc["accessors"][index]
     view = doc["bufferViews"][a["bufferView"]]
     comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[a["type"]]
-    dtype = {5126: np.float32, 5125: np.uint32, 5123: np.uint16}[a["componentType"]]
+    dtype = {5126: np.float32, 5125: np.uint32, 5123: np.uint16, 5121: np.uint8}[a["componentType"]]
     start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
     values = np.frombuffer(binary, dtype=dtype, count=a["count"] * comps, offset=start)
+    if a.get("normalized"):  # unsigned integers read as [0, 1], as glTF clients read them
+        values = values / np.float64(np.iinfo(dtype).max)
     return values.reshape(a["count"], comps) if comps > 1 else values
 
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -36,6 +38,28 @@ int addFloatAccessor(tinygltf::Model& model, const std::vector<float>& values, i
       a.maxValues[c] = std::max(a.maxValues[c], double(values[i]));
     }
   }
+  model.accessors.push_back(a);
+  return int(model.accessors.size() - 1);
+}
+
+// Values in [0, 1] as unsigned integers read back normalised (glTF 2.0 §3.11: COLOR_n and
+// TEXCOORD_n may be normalised unsigned bytes or shorts; custom attributes anything): `Unsigned`
+// std::uint8_t for data an 8-bit map holds as well (the mask, the look), std::uint16_t for uvs,
+// within 1/65535 (a thirtieth of a texel at 2048). Each element stays 4-byte aligned as glTF
+// requires of vertex attributes: VEC4 bytes, VEC2 shorts.
+template <typename Unsigned>
+int addNormalisedAccessor(tinygltf::Model& model, const std::vector<float>& values, int components) {
+  constexpr float kMax = float(std::numeric_limits<Unsigned>::max());
+  std::vector<Unsigned> stored(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i)
+    stored[i] = Unsigned(std::lround(std::clamp(values[i], 0.0f, 1.0f) * kMax));
+  tinygltf::Accessor a;
+  a.bufferView = addBufferView(model, stored.data(), stored.size() * sizeof(Unsigned), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType =
+      sizeof(Unsigned) == 1 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE : TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  a.normalized = true;
+  a.count = values.size() / std::size_t(components);
+  a.type = components == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC4;
   model.accessors.push_back(a);
   return int(model.accessors.size() - 1);
 }
@@ -97,6 +121,28 @@ MapTextures addMapTextures(tinygltf::Model& model, const MaterialMaps& maps, con
 }
 
 // The primitive of `m` with its material (named after the mesh), in `model`.
+// The triangles' indices, in 16 bits where the vertices allow (every LOD but a hero's LOD0), else 32.
+int addIndexAccessor(tinygltf::Model& model, const SurfaceMesh& m) {
+  tinygltf::Accessor indices;
+  if (m.positions.size() <= std::numeric_limits<std::uint16_t>::max()) {
+    std::vector<std::uint16_t> narrow;
+    narrow.reserve(3 * m.triangles.size());
+    for (const auto& t : m.triangles)
+      for (std::uint32_t v : t) narrow.push_back(std::uint16_t(v));
+    indices.bufferView = addBufferView(model, narrow.data(), narrow.size() * sizeof(std::uint16_t),
+                                       TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  } else {
+    indices.bufferView = addBufferView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),
+                                       TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  }
+  indices.count = 3 * m.triangles.size();
+  indices.type = TINYGLTF_TYPE_SCALAR;
+  model.accessors.push_back(indices);
+  return int(model.accessors.size() - 1);
+}
+
 tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
                                  const std::array<float, 2>& durability_range, const MapTextures& maps,
                                  const GlbConventions& conventions) {
@@ -142,11 +188,11 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
       // The same rotation as the normals; a rotation keeps the frame's handedness, so w stays.
       tangents.insert(tangents.end(), {t[0], t[2], -t[1], t[3]});
     }
-    prim.attributes["TEXCOORD_0"] = addFloatAccessor(model, uvs, 2, false);
+    prim.attributes["TEXCOORD_0"] = addNormalisedAccessor<std::uint16_t>(model, uvs, 2);
     prim.attributes["TANGENT"] = addFloatAccessor(model, tangents, 4, false);
   }
   prim.attributes["COLOR_0"] = addFloatAccessor(model, colors, 3, false);
-  prim.attributes["COLOR_1"] = addFloatAccessor(model, mask, 4, false);
+  prim.attributes["COLOR_1"] = addNormalisedAccessor<std::uint8_t>(model, mask, 4);
   prim.attributes["_DURABILITY"] = addFloatAccessor(model, m.durability, 1, false);
   prim.attributes["_COLLUVIUM"] = addFloatAccessor(model, m.colluvium, 1, false);
   prim.attributes["_CURVATURE"] = addFloatAccessor(model, m.curvature, 1, false);
@@ -156,7 +202,7 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
     std::vector<float> look;
     look.reserve(4 * n);
     for (const auto& v : m.look) look.insert(look.end(), v.begin(), v.end());
-    prim.attributes["_HISTORY"] = addFloatAccessor(model, look, 4, false);
+    prim.attributes["_HISTORY"] = addNormalisedAccessor<std::uint8_t>(model, look, 4);
   }
   if (m.history.size() == n && n > 0) {
     std::vector<float> scar;
@@ -165,14 +211,7 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
     prim.attributes["_SCAR"] = addFloatAccessor(model, scar, 1, false);
   }
 
-  tinygltf::Accessor indices;
-  indices.bufferView = addBufferView(model, m.triangles.data(), m.triangles.size() * sizeof(m.triangles[0]),
-                                     TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  indices.count = 3 * m.triangles.size();
-  indices.type = TINYGLTF_TYPE_SCALAR;
-  model.accessors.push_back(indices);
-  prim.indices = int(model.accessors.size() - 1);
+  prim.indices = addIndexAccessor(model, m);
 
   tinygltf::Material material;
   material.name = conventions.material_prefix + m.name;

@@ -532,7 +532,9 @@ TEST(MeshExport, GlbRoundTrip) {
     const auto dur = accessorData<float>(model, prim.attributes.at("_DURABILITY"), 1);
     const auto cov = accessorData<float>(model, prim.attributes.at("_COLLUVIUM"), 1);
     const auto cur = accessorData<float>(model, prim.attributes.at("_CURVATURE"), 1);
-    const auto idx = accessorData<std::uint32_t>(model, prim.indices, 1);
+    // 16-bit indices where the vertices allow (these meshes have fewer than 65,536).
+    EXPECT_EQ(model.accessors[std::size_t(prim.indices)].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    const auto idx = accessorData<std::uint16_t>(model, prim.indices, 1);
     ASSERT_EQ(pos.size(), 3 * s->positions.size());
     ASSERT_EQ(idx.size(), 3 * s->triangles.size());
     for (std::size_t i = 0; i < s->positions.size(); ++i) {

@@ -613,15 +613,23 @@ TEST(AssetGlb, PackedMaskInColor1MatchesTheNamedAttributes) {
   };
   const auto& mask_accessor = model.accessors[std::size_t(prim.attributes.at("COLOR_1"))];
   EXPECT_EQ(mask_accessor.type, TINYGLTF_TYPE_VEC4);
-  const float* mask = floats("COLOR_1");
+  // In normalised bytes, as glTF allows COLOR_n: what an 8-bit mask map holds.
+  ASSERT_EQ(mask_accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  ASSERT_TRUE(mask_accessor.normalized);
+  const auto& mask_view = model.bufferViews[std::size_t(mask_accessor.bufferView)];
+  const std::uint8_t* bytes = model.buffers[0].data.data() + mask_view.byteOffset + mask_accessor.byteOffset;
+  std::vector<float> mask_values(4 * mask_accessor.count);
+  for (std::size_t i = 0; i < mask_values.size(); ++i) mask_values[i] = bytes[i] / 255.0f;
+  const float* mask = mask_values.data();
   const float* durability = floats("_DURABILITY");
   const float* curvature = floats("_CURVATURE");
   const float* altitude = floats("_ALTITUDE");
   const auto range = r.meshes.durability_range;
   for (std::size_t i = 0; i < mask_accessor.count; ++i) {
-    ASSERT_NEAR(mask[4 * i], std::clamp((durability[i] - range[0]) / (range[1] - range[0]), 0.0f, 1.0f), 1e-6);
-    ASSERT_EQ(mask[4 * i + 2], curvature[i]);
-    ASSERT_EQ(mask[4 * i + 3], std::clamp(altitude[i], 0.0f, 1.0f));
+    const float step = 0.5f / 255 + 1e-6f;  // rounded to the nearest byte
+    ASSERT_NEAR(mask[4 * i], std::clamp((durability[i] - range[0]) / (range[1] - range[0]), 0.0f, 1.0f), step);
+    ASSERT_NEAR(mask[4 * i + 2], std::clamp(curvature[i], 0.0f, 1.0f), step);
+    ASSERT_NEAR(mask[4 * i + 3], std::clamp(altitude[i], 0.0f, 1.0f), step);
   }
 }
 

@@ -60,15 +60,19 @@ TEST(TexturedExports, GlbCarriesUvsTheBakersTangentsAndTheMaps) {
   ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, (dir.path() / "rock.glb").string())) << err;
   ASSERT_EQ(model.meshes.size(), 1u);
   const tinygltf::Primitive& prim = model.meshes[0].primitives[0];
-  const auto uvs = accessorValues<float>(model, prim.attributes.at("TEXCOORD_0"));
+  // The uvs in normalised 16 bits, as glTF allows (the writer's choice: a thirtieth of a texel at 2048).
+  const tinygltf::Accessor& uv_accessor = model.accessors.at(std::size_t(prim.attributes.at("TEXCOORD_0")));
+  EXPECT_EQ(uv_accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  EXPECT_TRUE(uv_accessor.normalized);
+  const auto uvs = accessorValues<std::uint16_t>(model, prim.attributes.at("TEXCOORD_0"));
   const auto tangents = accessorValues<float>(model, prim.attributes.at("TANGENT"));
   const auto colours = accessorValues<float>(model, prim.attributes.at("COLOR_0"));
   const std::size_t n = m.rock.positions.size();
   ASSERT_EQ(uvs.size(), 2 * n);
   ASSERT_EQ(tangents.size(), 4 * n);
   for (std::size_t i = 0; i < n; ++i) {
-    ASSERT_EQ(uvs[2 * i], m.rock.uvs[i][0]);
-    ASSERT_EQ(uvs[2 * i + 1], m.rock.uvs[i][1]);
+    ASSERT_NEAR(uvs[2 * i] / 65535.0, m.rock.uvs[i][0], 0.5 / 65535 + 1e-7);
+    ASSERT_NEAR(uvs[2 * i + 1] / 65535.0, m.rock.uvs[i][1], 0.5 / 65535 + 1e-7);
     // The frames the maps were baked in, in glTF's y-up axes (x, z, -y), handedness in w.
     const auto& t = m.rock.tangents[i];
     ASSERT_EQ(tangents[4 * i], t[0]);
