@@ -97,17 +97,8 @@ class TrackedCells {
   // neighbours. A cell listed twice is harmless: its flag already agrees.
   // `entered`, if given, receives the cells that joined the set, sorted.
   void update(const std::vector<Cell>& changed, bool with_neighbours, std::vector<Cell>* entered = nullptr) {
-    std::vector<Cell> added;
-    bool any_removed = false;
-    const auto reevaluate = [&](Cell c, const VoxelCoord& p) {
-      const bool now = member_(p.x, p.y, p.z);
-      if (now == flag(c)) return;
-      setFlag(c, now);
-      if (now)
-        added.push_back(c);
-      else
-        any_removed = true;
-    };
+    Changes changes;
+    const auto reevaluate = [&](Cell c, const VoxelCoord& p) { assign(c, member_(p.x, p.y, p.z), changes); };
     for (Cell c : changed) {
       const VoxelCoord p = g_.coord(c);
       reevaluate(c, p);
@@ -116,7 +107,7 @@ class TrackedCells {
         if (g_.contains(p.x + o[0], p.y + o[1], p.z + o[2]))
           reevaluate(Cell(g_.index(p.x + o[0], p.y + o[1], p.z + o[2])), {p.x + o[0], p.y + o[1], p.z + o[2]});
     }
-    merge(added, any_removed, entered);
+    merge(changes, entered);
   }
 
   // update(changed, true) for the rock under colluvium, testing only where membership may have
@@ -126,16 +117,8 @@ class TrackedCells {
   // have changed. The same set as update(changed, true).
   template <typename Joins>
   void updateAroundChanges(const std::vector<Cell>& changed, Joins joins) {
-    std::vector<Cell> added;
-    bool any_removed = false;
-    const auto set = [&](Cell c, bool now) {
-      if (now == flag(c)) return;
-      setFlag(c, now);
-      if (now)
-        added.push_back(c);
-      else
-        any_removed = true;
-    };
+    Changes changes;
+    const auto set = [&](Cell c, bool now) { assign(c, now, changes); };
     const std::ptrdiff_t sx = 1, sy = g_.nx, sz = std::ptrdiff_t(g_.nx) * g_.ny;
     const auto nx = std::uint32_t(g_.nx), ny = std::uint32_t(g_.ny);
     for (Cell c : changed) {
@@ -155,15 +138,30 @@ class TrackedCells {
         }
       }
     }
-    merge(added, any_removed, nullptr);
+    merge(changes, nullptr);
   }
 
  private:
-  // The cells that joined (sorted here) and whether any left, into the sorted list.
-  void merge(std::vector<Cell>& added, bool any_removed, std::vector<Cell>* entered) {
+  // An update's changes: the cells that joined, and whether any left.
+  struct Changes {
+    std::vector<Cell> added;
+    bool any_removed = false;
+  };
+  // Sets c's membership to `now`, noting the change.
+  void assign(Cell c, bool now, Changes& changes) {
+    if (now == flag(c)) return;
+    setFlag(c, now);
+    if (now)
+      changes.added.push_back(c);
+    else
+      changes.any_removed = true;
+  }
+  // The changes into the sorted list; `entered`, if given, receives the cells that joined, sorted.
+  void merge(Changes& changes, std::vector<Cell>* entered) {
+    std::vector<Cell>& added = changes.added;
     std::sort(added.begin(), added.end());
     if (entered) *entered = added;
-    if (any_removed) std::erase_if(cells_, [this](Cell c) { return !flag(c); });
+    if (changes.any_removed) std::erase_if(cells_, [this](Cell c) { return !flag(c); });
     if (!added.empty()) {
       const std::size_t old_size = cells_.size();
       cells_.insert(cells_.end(), added.begin(), added.end());

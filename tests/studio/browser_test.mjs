@@ -24,6 +24,28 @@ let failure = null;
 const ok = (condition, message) => { check(condition, message); ++passed; };
 const until = (what, predicate, seconds = 60) => waitFor(what, predicate, seconds);
 
+// The share of the view's pixels that differ from its background in the rock's screen box
+// (`rock`: the final bake's when it is shown) or in a strip of sky along the view's top (`sky`).
+const differing = (page, region) => page.evaluate((region) => {
+  const box = window.studio.rockScreenBox();
+  const gl = document.querySelector('#view canvas');
+  const r = gl.getBoundingClientRect();
+  const c = document.createElement('canvas');
+  c.width = gl.width; c.height = gl.height;
+  const ctx = c.getContext('2d');
+  ctx.drawImage(gl, 0, 0);
+  const sx = gl.width / r.width, sy = gl.height / r.height;
+  const bg = [parseInt(box.background.slice(1, 3), 16), parseInt(box.background.slice(3, 5), 16), parseInt(box.background.slice(5, 7), 16)];
+  const [x0, y0, x1, y1] = region === 'sky' ? [r.left, r.top, r.right, r.top + 30] : [box.x0, box.y0, box.x1, box.y1];
+  const X0 = Math.max(0, Math.round((x0 - r.left) * sx)), Y0 = Math.max(0, Math.round((y0 - r.top) * sy));
+  const X1 = Math.min(gl.width, Math.round((x1 - r.left) * sx)), Y1 = Math.min(gl.height, Math.round((y1 - r.top) * sy));
+  const d = ctx.getImageData(X0, Y0, X1 - X0, Y1 - Y0).data;
+  let differ = 0;
+  for (let i = 0; i < d.length; i += 4)
+    if (Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 30) ++differ;
+  return differ / (d.length / 4);
+}, region);
+
 const browser = await puppeteer.launch({
   executablePath: '/usr/bin/chromium',
   headless: true,
@@ -43,28 +65,7 @@ try {
   ok(errors.length === 0, `the page loads with no errors and no request outside the studio (${errors.join('; ')})`);
 
   // The 3-D view draws the rock: inside the rock's screen box most pixels differ from the background.
-  const coverage = await page.evaluate(() => {
-    const box = window.studio.rockScreenBox();
-    const gl = document.querySelector('#view canvas');
-    const r = gl.getBoundingClientRect();
-    const c = document.createElement('canvas');
-    c.width = gl.width; c.height = gl.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(gl, 0, 0);
-    const sx = gl.width / r.width, sy = gl.height / r.height;
-    const bg = [parseInt(box.background.slice(1, 3), 16), parseInt(box.background.slice(3, 5), 16), parseInt(box.background.slice(5, 7), 16)];
-    const measure = (x0, y0, x1, y1) => {
-      const X0 = Math.max(0, Math.round((x0 - r.left) * sx)), Y0 = Math.max(0, Math.round((y0 - r.top) * sy));
-      const X1 = Math.min(gl.width, Math.round((x1 - r.left) * sx)), Y1 = Math.min(gl.height, Math.round((y1 - r.top) * sy));
-      const d = ctx.getImageData(X0, Y0, X1 - X0, Y1 - Y0).data;
-      let differ = 0;
-      for (let i = 0; i < d.length; i += 4)
-        if (Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 30) ++differ;
-      return differ / (d.length / 4);
-    };
-    // The rock's box against a strip of sky above the domain.
-    return { rock: measure(box.x0, box.y0, box.x1, box.y1), sky: measure(r.left, r.top, r.right, r.top + 30) };
-  });
+  const coverage = { rock: await differing(page, 'rock'), sky: await differing(page, 'sky') };
   ok(coverage.rock > 0.3 && coverage.sky < 0.05,
     `the 3-D view draws the rock (${(100 * coverage.rock).toFixed(0)}% of its box differs from the background, sky ${(100 * coverage.sky).toFixed(0)}%)`);
 
@@ -146,24 +147,7 @@ try {
   // brings: its size in metres back in world units, and y-up turned to z-up.
   ok(overlap > 0.6 * Math.max(area(live), area(finalBox)),
     `the final bake shows at the live rock's size and upright (screen boxes overlap ${(100 * overlap / Math.max(area(live), area(finalBox))).toFixed(0)}%)`);
-  const drawn = await page.evaluate(() => {
-    const box = window.studio.rockScreenBox();
-    const gl = document.querySelector('#view canvas');
-    const r = gl.getBoundingClientRect();
-    const c = document.createElement('canvas');
-    c.width = gl.width; c.height = gl.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(gl, 0, 0);
-    const sx = gl.width / r.width, sy = gl.height / r.height;
-    const X0 = Math.max(0, Math.round((box.x0 - r.left) * sx)), Y0 = Math.max(0, Math.round((box.y0 - r.top) * sy));
-    const X1 = Math.min(gl.width, Math.round((box.x1 - r.left) * sx)), Y1 = Math.min(gl.height, Math.round((box.y1 - r.top) * sy));
-    const d = ctx.getImageData(X0, Y0, X1 - X0, Y1 - Y0).data;
-    const bg = [parseInt(box.background.slice(1, 3), 16), parseInt(box.background.slice(3, 5), 16), parseInt(box.background.slice(5, 7), 16)];
-    let differ = 0;
-    for (let i = 0; i < d.length; i += 4)
-      if (Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 30) ++differ;
-    return differ / (d.length / 4);
-  });
+  const drawn = await differing(page, 'rock');
   ok(drawn > 0.3, `the final view draws the rock (${(100 * drawn).toFixed(0)}% of its box differs from the background)`);
   ok(errors.length === 0, `the final view loads with no errors and no request outside the studio (${errors.join('; ')})`);
 } catch (e) {
