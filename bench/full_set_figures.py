@@ -8,7 +8,11 @@ Prints each folder's size (all files, and without the render's files), the bigge
 read by oiiotool as a client reads them:
 - LOD0's normal-map fidelity: the mean and 99th-percentile angle between the two maps' normals
   (each decoded as glTF does, n = 2c − 1, normalised), over every texel;
-- the base colour's mean absolute difference in linear RGB (sRGB decoded), LOD0 and every LOD;
+- the base colour's mean absolute difference in linear RGB (sRGB decoded), LOD0 and every LOD,
+  and the other colour maps' (ORM, mask, History; linear), over every texel and over the texels
+  LOD0's uvs cover. A map the two folders hold at different sizes is compared as a renderer
+  reads it: the smaller sampled bilinearly (glTF's linear filter, uv at each larger texel's
+  centre, clamped at the edges) at every texel of the larger;
 - the height map's largest difference, world units.
 """
 import os
@@ -61,11 +65,38 @@ def pixels(path):
         samples = (values[..., 0] << 8 | values[..., 1]) / 65535.0
     else:
         samples = raw / 255.0
-    return samples.reshape(h, w, channels)[..., :3]
+    return samples.reshape(h, w, channels)[..., :4]
+
+
+def resampled(small, size):
+    """`small` (h, w, c) sampled bilinearly at the texel centres of a size × size map."""
+    def along(a, axis):
+        n = a.shape[axis]
+        x = (numpy.arange(size) + 0.5) * n / size - 0.5
+        x0 = numpy.floor(x).astype(int)
+        t = (x - x0).reshape([-1 if d == axis else 1 for d in range(a.ndim)])
+        return numpy.take(a, numpy.clip(x0, 0, n - 1), axis) * (1 - t) + numpy.take(a, numpy.clip(x0 + 1, 0, n - 1), axis) * t
+    return along(along(small, 0), 1)
+
+
+def same_size(a, b):
+    """Both maps at the larger's size (the smaller resampled)."""
+    size = max(a.shape[0], b.shape[0])
+    return tuple(m if m.shape[0] == size else resampled(m, size) for m in (a, b))
+
+
+def covered_texels(asset, size):
+    """Texels whose centre LOD0's rock or colluvium uvs cover (tests/compress/normal_fidelity.py)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "..", "tests", "compress"))
+    from normal_fidelity import covered  # noqa: E402
+    from clast_figures import read_glb  # noqa: E402
+    doc, binary = read_glb(os.path.join(asset, "rock.glb"))
+    return covered(doc, binary, size)
 
 
 def normals(path):
-    c = pixels(path).astype(numpy.float64)
+    c = pixels(path)[..., :3].astype(numpy.float64)
     n = 2 * c - 1
     return n / numpy.maximum(numpy.linalg.norm(n, axis=2, keepdims=True), 1e-12)
 
@@ -91,10 +122,21 @@ def main():
     angle = numpy.degrees(numpy.arccos(numpy.clip((nb * na).sum(axis=2), -1, 1)))
     print(f"LOD0 normals: mean {angle.mean():.3f}°, 99th percentile {numpy.percentile(angle, 99):.3f}°, "
           f"largest {angle.max():.3f}°")
+    mask = covered_texels(after, nb.shape[0])
     for f in sorted(os.listdir(tex_b)):
-        if "_BaseColor" in f and os.path.exists(os.path.join(tex_a, f)):
-            d = numpy.abs(linear(pixels(os.path.join(tex_b, f))) - linear(pixels(os.path.join(tex_a, f)))).mean()
-            print(f"{f}: mean |Δ| {d:.5f} linear")
+        kind = next((k for k in ("_BaseColor", "_ORM", "_Mask", "_History") if k in f), None)
+        if kind is None or "_Clasts" in f or not os.path.exists(os.path.join(tex_a, f)):
+            continue
+        a, b = pixels(os.path.join(tex_b, f)), pixels(os.path.join(tex_a, f))
+        if kind == "_BaseColor":
+            a, b = linear(a[..., :3]), linear(b[..., :3])
+        sizes = f"{a.shape[0]} → {b.shape[0]}"
+        a, b = same_size(a, b)
+        d = numpy.abs(a - b)
+        line = f"{f} ({sizes}): mean |Δ| {d.mean():.5f} linear"
+        if a.shape[0] == mask.shape[0]:
+            line += f", {d[mask].mean():.5f} on LOD0's covered texels (99th percentile {numpy.percentile(d[mask], 99):.4f})"
+        print(line)
     hb, ha = os.path.join(tex_b, f"{name}_Height.exr"), os.path.join(tex_a, f"{name}_Height.exr")
     if os.path.exists(hb) and os.path.exists(ha):
         diff = subprocess.run(["oiiotool", hb, ha, "--diff"], capture_output=True, text=True).stdout

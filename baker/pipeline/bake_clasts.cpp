@@ -196,6 +196,7 @@ void textureClasts(ClastStage& stage, const Preset& preset, const std::filesyste
   request.params.size = std::clamp(preset.texture->size / 4, 256, 1024);
   request.params.maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm};
   request.params.lod_size = LodMapSize::Full;
+  request.params.colour_density = 0;  // a stone's maps are small already, and its voxels are not the rock's
   // In shape units (longest axis 1): the source lies within a voxel of the small grid, and no
   // occlusion ray reaches the next shape of the row (at least 1 away).
   request.params.cage = 0.05;

@@ -269,6 +269,11 @@ struct TextureParams {
                                   TextureMap::Mask};
   LodMapSize lod_size = LodMapSize::Halved;
   MapPrecision precision = MapPrecision::Compact;
+  // Texels a voxel the colour maps (base colour, ORM, mask, History: the voxels' fields and the
+  // look, no finer than a voxel) keep at least: each LOD's are halved while they would keep this
+  // many; the normal and height maps, whose relief is finer, keep the LOD's size. 0: every map
+  // at the LOD's size. 0..64.
+  double colour_density = 3.0;
 };
 struct RenderParams {
   std::string template_name = "studio";

@@ -729,6 +729,11 @@ const MapSpec<TextureParams>& textureSpec() {
           k("precision", &TextureParams::precision, choice<MapPrecision>(),
             "`compact`: 8-bit normal maps and a half-float height; `full`: 16-bit normal maps and a 32-bit float "
             "height"),
+          k("colour_density", &TextureParams::colour_density, numberIn(0.0, 64.0),
+            "texels a voxel the colour maps (base colour, ORM, mask, History) keep at least: each LOD's are halved "
+            "while they would keep this many, the normal and height maps staying at the LOD's size; 0: every map "
+            "at the LOD's size")
+              .unit("texels a voxel"),
       },
       {},
       "([textures.md](textures.md)). Given, even as `texture: {}`, the bake makes a texture set: every LOD "

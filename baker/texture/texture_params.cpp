@@ -16,6 +16,8 @@ void checkTextureParams(const TextureParams& p) {
   if (p.ao_rays < 1 || p.ao_rays > 1024) fail("ao_rays: " + std::to_string(p.ao_rays) + " is outside 1..1024");
   if (!(p.ao_distance >= 0) || !std::isfinite(p.ao_distance)) fail("ao_distance: must be 0 or a positive length");
   if (!(p.cage >= 0) || !std::isfinite(p.cage)) fail("cage: must be 0 or a positive length");
+  if (!(p.colour_density >= 0 && p.colour_density <= 64))
+    fail("colour_density: " + std::to_string(p.colour_density) + " is outside 0..64 texels a voxel");
   if (p.maps.empty()) fail("maps: lists no map");
 }
 
@@ -31,6 +33,18 @@ std::string mapName(TextureMap map) {
 int lodMapSize(const TextureParams& params, int lod) {
   if (params.lod_size == LodMapSize::Full || lod <= 0) return params.size;
   return std::max(params.size >> std::min(lod, 30), std::min(params.size, 256));
+}
+
+bool isColourMap(TextureMap map) {
+  return map != TextureMap::Normal && map != TextureMap::Height;
+}
+
+int colourMapSize(const TextureParams& params, int size, double texels_per_voxel) {
+  if (!(params.colour_density > 0) || !(texels_per_voxel > 0)) return size;
+  const int floor = std::min(size, 256);
+  int colour = size;
+  while (colour / 2 >= floor && texels_per_voxel * (colour / 2) / size >= params.colour_density) colour /= 2;
+  return colour;
 }
 
 int usefulMapSize(std::size_t source_triangles) {

@@ -42,6 +42,16 @@ std::string mapName(TextureMap map);
 // with LodMapSize::Full, `params.size` for every LOD.
 int lodMapSize(const TextureParams& params, int lod);
 
+// Whether `map` is a colour map (base colour, ORM, mask, History), sized by colourMapSize, or a
+// relief map (normal, height), at the LOD's size.
+bool isColourMap(TextureMap map);
+
+// The width and height of a LOD's colour maps, texels: `size` (the LOD's) halved while the half
+// keeps at least `params.colour_density` texels a voxel and at least min(size, 256) texels
+// across; `texels_per_voxel` is the LOD's density at `size`. `size` when colour_density is 0 or
+// texels_per_voxel is not positive.
+int colourMapSize(const TextureParams& params, int size, double texels_per_voxel);
+
 // Texels a map may spend per triangle of the bake source (the finest surface): 8 × 8. Beyond
 // that a map holds nothing the surface can give it (a 126-triangle rock baked at 8192 spends
 // half a million texels per triangle), only time and memory.

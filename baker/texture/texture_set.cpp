@@ -194,15 +194,21 @@ std::vector<UvAtlas> buildLodAtlases(const std::vector<AssetMeshes>& lods, const
   return atlases;
 }
 
-// LOD k's maps, in the order of params.maps, their files listed in `files`. Each map is made,
+// The maps a LOD's set has, in order: params.maps, and the History map with a look.
+std::vector<TextureMap> lodMaps(const TextureParams& params, const AssetMeshes& source) {
+  std::vector<TextureMap> maps = params.maps;
+  if (!source.rock.look.empty()) maps.push_back(TextureMap::History);  // a look's own map
+  return maps;
+}
+
+// LOD k's maps of `maps` (in that order), their files listed in `files`. Each map is made,
 // then written and freed, before the next: one map in memory at a time, or one band of it.
 void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, const LodBake& bake,
-                  const MapInputs& inputs, std::vector<TextureFile>& files, StepTimer& step) {
+                  const MapInputs& inputs, const std::vector<TextureMap>& maps, std::vector<TextureFile>& files,
+                  StepTimer& step) {
   const std::string lod = "lod" + std::to_string(k);
   const bool banded = request.whole_map_size <= 0 || size > request.whole_map_size;
   const int rows = banded ? (request.band_rows > 0 ? request.band_rows : kBandRows) : size;
-  std::vector<TextureMap> maps = request.params.maps;
-  if (!bake.source->rock.look.empty()) maps.push_back(TextureMap::History);  // a look's own map
   for (TextureMap map : maps) {
     const MapKind& kind = mapKind(map);
     if (kind.lod0_only && k > 0) continue;
@@ -282,19 +288,38 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     computeTangents(atlas.meshes.rock);
     computeTangents(atlas.meshes.colluvium);
     step(lod + " tangents");
+    std::array<std::vector<float>, 2> occlusion;
+    if (wantsMap(params, TextureMap::Orm))
+      for (std::size_t s = 0; s < 2; ++s)
+        for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
+    const MapInputs inputs{request, look, occlusion, contact};
+
+    // The colour maps at their own, smaller size (colourMapSize) first, from texels and hits of
+    // their own, freed before the relief maps' are made: the ray scene serves both.
+    const std::vector<TextureMap> maps = lodMaps(params, source);
+    std::vector<TextureMap> colour_maps, relief_maps;
+    const int colour_size = colourMapSize(params, size, atlas.texels_per_unit * request.voxel_size);
+    for (const TextureMap map : maps)
+      (colour_size < size && isColourMap(map) ? colour_maps : relief_maps).push_back(map);
+    if (!colour_maps.empty()) {
+      TexelMap texels = rasterizeUv(atlas.meshes, colour_size);
+      dilateTexels(texels);
+      const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
+      step(lod + " colour rays");
+      writeLodMaps(request, k, colour_size, {&atlas.meshes, &texels, &hits, &source}, inputs, colour_maps, files[k],
+                   step);
+    }
     TexelMap texels = rasterizeUv(atlas.meshes, size);
     dilateTexels(texels);
     const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
     set.missed += hits.missed;
     step(lod + " rays");
-
-    const LodBake bake{&atlas.meshes, &texels, &hits, &source};
-    std::array<std::vector<float>, 2> occlusion;
-    if (wantsMap(params, TextureMap::Orm))
-      for (std::size_t s = 0; s < 2; ++s)
-        for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
     if (k == 0) rays.reset();
-    writeLodMaps(request, k, size, bake, {request, look, occlusion, contact}, files[k], step);
+    writeLodMaps(request, k, size, {&atlas.meshes, &texels, &hits, &source}, inputs, relief_maps, files[k], step);
+    // Listed in the set's order, whichever size made them first.
+    std::stable_sort(files[k].begin(), files[k].end(), [&maps](const TextureFile& a, const TextureFile& b) {
+      return std::find(maps.begin(), maps.end(), a.map) < std::find(maps.begin(), maps.end(), b.map);
+    });
     if (request.progress) request.progress(int(k), size, ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {

@@ -1,7 +1,8 @@
 // A texture set for an asset's LODs (docs/textures.md): each LOD unwrapped into an atlas of
 // its own (uv_atlas.h), its tangent frames (tangents.h), its texels traced to the bake source
 // (trace_texels.h), and its maps (bake_maps.h) written one at a time into `folder`
-// (texture_files.h), at lodMapSize(params, k) texels: LOD0's as <name>_BaseColor.png,
+// (texture_files.h), at lodMapSize(params, k) texels (the colour maps at colourMapSize of
+// that, from texels traced at their own size): LOD0's as <name>_BaseColor.png,
 // <name>_Normal_LOD0.png, <name>_ORM.png, <name>_Height.exr and <name>_Mask.png, LOD k's as
 // <name>_BaseColor_LOD<k>.png, <name>_Normal_LOD<k>.png, <name>_ORM_LOD<k>.png and
 // <name>_Mask_LOD<k>.png (the height is LOD0's displacement alone). Each LOD's own atlas keeps
@@ -66,11 +67,11 @@ struct TextureFile {
 struct TextureSet {
   std::vector<AssetMeshes> lods;        // the LODs with uvs and tangents, vertices split along seams
   std::vector<std::size_t> charts;      // per LOD
-  std::vector<int> sizes;               // per LOD: its maps' width and height, texels
+  std::vector<int> sizes;               // per LOD: its relief maps' width and height, texels (files: each map's)
   std::vector<double> texels_per_unit;  // per LOD: texel density, texels per world unit
   std::vector<double> coverage;         // per LOD: the share of its maps its charts cover (uvCoverage)
   std::vector<TextureFile> files;       // LOD by LOD, LOD0 first, each LOD's in the order of params.maps
-  std::size_t missed = 0;               // covered texels whose rays found no source within the cage
+  std::size_t missed = 0;  // covered texels (of the LODs' sizes) whose rays found no source within the cage
   // Per step ("lod0 rays", "lod0 normal", …): wall-clock seconds and the process's CPU
   // seconds (all threads) over it.
   PhaseTimes steps;

@@ -626,6 +626,97 @@ TEST(TextureSet, LodMapSizes) {
   EXPECT_EQ(lodMapSize(p, 4), 1024);
 }
 
+TEST(TextureSet, ColourMapSizes) {
+  TextureParams p;
+  EXPECT_EQ(p.colour_density, 3.0);
+  EXPECT_EQ(colourMapSize(p, 2048, 7.2), 1024);  // goblin's LOD0: 3.6 texels a voxel kept
+  EXPECT_EQ(colourMapSize(p, 1024, 3.5), 1024);  // its LOD1: a half would keep 1.75
+  EXPECT_EQ(colourMapSize(p, 2048, 24.0), 256);  // halved three times, to exactly 3 a voxel
+  EXPECT_EQ(colourMapSize(p, 512, 100.0), 256);  // never below 256
+  EXPECT_EQ(colourMapSize(p, 128, 100.0), 128);  // nor below a smaller LOD's own size
+  EXPECT_EQ(colourMapSize(p, 2048, 0.0), 2048);  // no voxel size: no scale to keep
+  p.colour_density = 0;
+  EXPECT_EQ(colourMapSize(p, 2048, 7.2), 2048);
+  EXPECT_TRUE(isColourMap(TextureMap::BaseColor) && isColourMap(TextureMap::Orm) && isColourMap(TextureMap::Mask) &&
+              isColourMap(TextureMap::History));
+  EXPECT_FALSE(isColourMap(TextureMap::Normal) || isColourMap(TextureMap::Height));
+}
+
+// Sample (channel `c` of `channels`) of a square map at uv, bilinearly with clamped edges, as
+// glTF's linear filter reads it.
+double bilinear(const std::vector<std::uint16_t>& map, int size, int channels, int c, double u, double v) {
+  const double x = u * size - 0.5, y = v * size - 0.5;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const double tx = x - x0, ty = y - y0;
+  const auto at = [&](int xi, int yi) {
+    xi = std::clamp(xi, 0, size - 1), yi = std::clamp(yi, 0, size - 1);
+    return double(
+        map[(std::size_t(yi) * std::size_t(size) + std::size_t(xi)) * std::size_t(channels) + std::size_t(c)]);
+  };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+TEST(TextureSet, ColourMapsAtTheirOwnSizeReadAsTheFullSizeOnes) {
+  const AssetMeshes& source = test::weatheredRock().meshes;
+  test::TempDir full, halved;
+  TextureSetRequest request;
+  request.params.size = 512;
+  request.params.ao_rays = 4;
+  request.params.maps = {TextureMap::BaseColor, TextureMap::Normal, TextureMap::Orm, TextureMap::Height,
+                         TextureMap::Mask};
+  request.params.colour_density = 0;
+  request.seed = 3;
+  request.voxel_size = 2.0 / 32;
+  request.name = "c";
+  request.folder = full.path();
+  const TextureSet whole = bakeTextureSet({source}, source, request);
+  // A density one halving keeps and a second does not.
+  const double texels_per_voxel = whole.texels_per_unit[0] * request.voxel_size;
+  request.params.colour_density = 0.45 * texels_per_voxel;
+  request.folder = halved.path();
+  const TextureSet set = bakeTextureSet({source}, source, request);
+
+  std::vector<std::string> files;
+  for (const TextureFile& f : set.files) files.push_back(f.file + "@" + std::to_string(f.size));
+  EXPECT_EQ(files, (std::vector<std::string>{"c_BaseColor.png@256", "c_Normal_LOD0.png@512", "c_ORM.png@256",
+                                             "c_Height.exr@512", "c_Mask.png@256", "c_History.png@256"}));
+  EXPECT_EQ(set.sizes, (std::vector<int>{512}));
+  EXPECT_EQ(readPngHeader(halved.path() / "c_BaseColor.png").width, 256u);
+  // The relief maps are the same bytes as at density 0.
+  EXPECT_EQ(test::readBytes(halved.path() / "c_Normal_LOD0.png"), test::readBytes(full.path() / "c_Normal_LOD0.png"));
+
+  // On the texels the uvs cover, each half-size map sampled where a renderer samples it (at the
+  // full map's texel centres) against the full-size map: within a few 8-bit steps on average,
+  // against a spread of values many times larger.
+  const TexelMap covered = rasterizeUv(set.lods[0], 512);
+  for (const char* map : {"c_BaseColor.png", "c_ORM.png", "c_Mask.png", "c_History.png"}) {
+    int big = 0, small = 0, channels = 0, small_channels = 0;
+    const std::vector<std::uint16_t> a = readPngSamples(full.path() / map, big, channels);
+    const std::vector<std::uint16_t> b = readPngSamples(halved.path() / map, small, small_channels);
+    ASSERT_EQ(big, 512) << map;
+    ASSERT_EQ(small, 256) << map;
+    ASSERT_EQ(channels, small_channels) << map;
+    double diff = 0, sum = 0, sum2 = 0;
+    std::size_t n = 0;
+    for (int y = 0; y < big; ++y)
+      for (int x = 0; x < big; ++x) {
+        const std::size_t i = std::size_t(y) * std::size_t(big) + std::size_t(x);
+        if (covered.texels[i] == kEmptyTexel) continue;
+        for (int c = 0; c < channels; ++c) {
+          const double full_value = a[i * std::size_t(channels) + std::size_t(c)] / 255.0;
+          diff += std::abs(bilinear(b, small, channels, c, (x + 0.5) / big, (y + 0.5) / big) / 255.0 - full_value);
+          sum += full_value, sum2 += full_value * full_value, ++n;
+        }
+      }
+    ASSERT_GT(n, 10000u) << map;
+    const double mean_diff = diff / double(n);
+    const double spread = std::sqrt(std::max(0.0, sum2 / double(n) - (sum / double(n)) * (sum / double(n))));
+    EXPECT_LT(mean_diff, 0.012) << map;
+    EXPECT_GT(spread, 5 * mean_diff) << map;
+  }
+}
+
 TEST(Dilate, EveryEmptyTexelCopiesTheNearestCoveredOne) {
   // Two small squares far apart in a 64² map: every texel ends up pointing at a covered texel
   // of the square nearer to it.
