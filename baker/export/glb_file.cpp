@@ -165,12 +165,9 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
     const auto& q = m.normals[i];
     positions.insert(positions.end(), {metres * p[0], metres * p[2], -metres * p[1]});  // z-up → y-up
     normals.insert(normals.end(), {q[0], q[2], -q[1]});
-    // With a base-colour map COLOR_0 is white: glTF multiplies it into the map, and it must be
-    // there for COLOR_1 (the mask) to be a valid set.
-    if (maps.base_color >= 0)
-      colors.insert(colors.end(), {1.0f, 1.0f, 1.0f});
-    else
-      colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
+    // With a base-colour map COLOR_0 is white (below): glTF multiplies it into the map, and it
+    // must be there for COLOR_1 (the mask) to be a valid set.
+    if (maps.base_color < 0) colors.insert(colors.end(), m.colors[i].begin(), m.colors[i].end());
     // The packed mask every DCC reads as a second colour set.
     const float durability = m.durability[i] <= 0.0f ? 0.0f : d_span > 0 ? (m.durability[i] - d_lo) / d_span : 0.5f;
     mask.insert(mask.end(), {unit(durability), unit(m.colluvium[i]), unit(m.curvature[i]), unit(m.altitude[i])});
@@ -191,7 +188,10 @@ tinygltf::Primitive addPrimitive(tinygltf::Model& model, const SurfaceMesh& m,
     prim.attributes["TEXCOORD_0"] = addNormalisedAccessor<std::uint16_t>(model, uvs, 2);
     prim.attributes["TANGENT"] = addFloatAccessor(model, tangents, 4, false);
   }
-  prim.attributes["COLOR_0"] = addFloatAccessor(model, colors, 3, false);
+  // White is exact in normalised bytes, a third of the floats' size; colours stay floats.
+  prim.attributes["COLOR_0"] = maps.base_color >= 0
+                                   ? addNormalisedAccessor<std::uint8_t>(model, std::vector<float>(4 * n, 1.0f), 4)
+                                   : addFloatAccessor(model, colors, 3, false);
   prim.attributes["COLOR_1"] = addNormalisedAccessor<std::uint8_t>(model, mask, 4);
   prim.attributes["_DURABILITY"] = addFloatAccessor(model, m.durability, 1, false);
   prim.attributes["_COLLUVIUM"] = addFloatAccessor(model, m.colluvium, 1, false);

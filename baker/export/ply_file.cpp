@@ -35,9 +35,11 @@ void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
       "property float nx\nproperty float ny\nproperty float nz\n"
       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
       "property float durability\nproperty float colluvium\nproperty float curvature\n"
-      "element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
-      m.name, n, m.triangles.size());
-  out.reserve(out.size() + n * 39 + m.triangles.size() * 13);
+      "element face {}\nproperty list uchar {} vertex_indices\nend_header\n",
+      m.name, n, m.triangles.size(), n <= 65536 ? "ushort" : "uint");
+  // Indices in 16 bits where they fit, as the GLB's: a seventh of a small surface's file.
+  const bool narrow = n <= 65536;
+  out.reserve(out.size() + n * 39 + m.triangles.size() * (narrow ? 7 : 13));
   for (std::size_t i = 0; i < n; ++i) {
     for (float x : m.positions[i]) put(out, x);
     for (float x : m.normals[i]) put(out, x);
@@ -48,7 +50,7 @@ void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
   }
   for (const auto& t : m.triangles) {
     put(out, std::uint8_t(3));
-    for (std::uint32_t i : t) put(out, i);
+    for (std::uint32_t i : t) narrow ? put(out, std::uint16_t(i)) : put(out, i);
   }
   writeFileAtomically(file, out);
 }

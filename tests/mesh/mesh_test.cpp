@@ -12,13 +12,11 @@
 #include <tiny_gltf.h>
 #include <nlohmann/json.hpp>
 
-#include "platform/colour.h"
-#include "geometry/mesh_checks.h"
-#include "platform/stopwatch.h"
-#include "geometry/triangle_geometry.h"
 #include "export/glb_file.h"
 #include "export/obj_file.h"
 #include "export/ply_file.h"
+#include "geometry/mesh_checks.h"
+#include "geometry/triangle_geometry.h"
 #include "mesh/bake_attributes.h"
 #include "mesh/extract_surfaces.h"
 #include "mesh/simplify_lods.h"
@@ -26,6 +24,8 @@
 #include "pipeline/bake_asset.h"
 #include "pipeline/bake_meshes.h"
 #include "pipeline/export_meshes.h"
+#include "platform/colour.h"
+#include "platform/stopwatch.h"
 #include "sim/shapes.h"
 #include "sim/weathering.h"
 #include "test_support.h"
@@ -381,6 +381,7 @@ ReadMesh readPly(const std::filesystem::path& file) {
   std::string line;
   std::size_t nv = 0, nf = 0;
   std::vector<std::string> props;
+  std::string index_type;
   while (std::getline(header, line)) {
     std::istringstream ls(line);
     std::string word, kind, name;
@@ -390,7 +391,10 @@ ReadMesh readPly(const std::filesystem::path& file) {
     }
     if (word == "element") ls >> kind >> (kind == "vertex" ? nv : nf);
     if (word == "property" && props.size() < 12) ls >> kind >> name, props.push_back(name);
+    if (word == "property" && line.rfind("property list", 0) == 0) ls >> kind >> kind >> index_type;
   }
+  // Indices in 16 bits where every vertex fits them, else 32 (docs/formats.md).
+  EXPECT_EQ(index_type, nv <= 65536 ? "ushort" : "uint");
   EXPECT_EQ(props, (std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue", "durability",
                                              "colluvium", "curvature"}));
   const char* at = bytes.data() + end + 11;
@@ -415,7 +419,15 @@ ReadMesh readPly(const std::filesystem::path& file) {
     get(count);
     EXPECT_EQ(count, 3);
     std::array<std::uint32_t, 3> t;
-    for (auto& i : t) get(i);
+    for (auto& i : t) {
+      if (index_type == "ushort") {
+        std::uint16_t narrow;
+        get(narrow);
+        i = narrow;
+      } else {
+        get(i);
+      }
+    }
     m.faces.push_back(t);
   }
   EXPECT_EQ(at, bytes.data() + bytes.size());
@@ -598,8 +610,9 @@ TEST(MeshStage, WritesTheExportsThePresetAsks) {
   // The stage times are parts of the call, not of anything before or after it.
   EXPECT_GT(r.times.seconds("extract").value_or(0.0), 0.0);
   EXPECT_GT(export_seconds, 0.0);
-  EXPECT_LE(*r.times.seconds("extract") + *r.times.seconds("attributes") + *r.times.seconds("subdivide") + export_seconds,
-            wall_seconds);
+  EXPECT_LE(
+      *r.times.seconds("extract") + *r.times.seconds("attributes") + *r.times.seconds("subdivide") + export_seconds,
+      wall_seconds);
   // The bake source: the refined surface LOD0 was simplified from, finer than it.
   EXPECT_GT(r.bake_source.rock.triangles.size(), r.meshes.rock.triangles.size());
   EXPECT_EQ(r.bake_source.rock.colors.size(), r.bake_source.rock.positions.size());

@@ -66,7 +66,12 @@ TEST(TexturedExports, GlbCarriesUvsTheBakersTangentsAndTheMaps) {
   EXPECT_TRUE(uv_accessor.normalized);
   const auto uvs = accessorValues<std::uint16_t>(model, prim.attributes.at("TEXCOORD_0"));
   const auto tangents = accessorValues<float>(model, prim.attributes.at("TANGENT"));
-  const auto colours = accessorValues<float>(model, prim.attributes.at("COLOR_0"));
+  // COLOR_0 multiplies the base colour map: white, as normalised bytes (exact).
+  const tinygltf::Accessor& colour_accessor = model.accessors.at(std::size_t(prim.attributes.at("COLOR_0")));
+  EXPECT_EQ(colour_accessor.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  EXPECT_TRUE(colour_accessor.normalized);
+  EXPECT_EQ(colour_accessor.type, TINYGLTF_TYPE_VEC4);
+  const auto colours = accessorValues<std::uint8_t>(model, prim.attributes.at("COLOR_0"));
   const std::size_t n = m.rock.positions.size();
   ASSERT_EQ(uvs.size(), 2 * n);
   ASSERT_EQ(tangents.size(), 4 * n);
@@ -80,8 +85,7 @@ TEST(TexturedExports, GlbCarriesUvsTheBakersTangentsAndTheMaps) {
     ASSERT_EQ(tangents[4 * i + 2], -t[1]);
     ASSERT_EQ(tangents[4 * i + 3], t[3]);
     ASSERT_TRUE(t[3] == 1.0f || t[3] == -1.0f);
-    // COLOR_0 multiplies the base colour map: white.
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(colours[3 * i + std::size_t(c)], 1.0f);
+    for (int c = 0; c < 4; ++c) ASSERT_EQ(colours[4 * i + std::size_t(c)], 255);
   }
   // One material, its maps by relative URI; the ORM image serves occlusion and metal-roughness.
   ASSERT_EQ(model.materials.size(), 1u);
