@@ -18,9 +18,10 @@ namespace {
 
 constexpr int kBandRows = 32;
 constexpr int kGroup = 16;  // bands a chunk
-// zlib level 4, filtered-data strategy: on a house set's maps a fifth smaller than level 1 for
-// twice its time; level 6 saves 3 % more for twice as long again (bench/README.md).
-constexpr int kLevel = 4;
+// zlib level 6, filtered-data strategy: on a house set's maps 3.5 % smaller than level 4 for
+// about twice its time, which the colour maps at a quarter of their texels (texture_params.h)
+// more than pay for; level 9 saves 3 % more for five to ten times as long (bench/README.md).
+constexpr int kLevel = 6;
 
 void put32(std::string& out, std::uint32_t v) {
   const char b[4] = {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
