@@ -1,7 +1,7 @@
 // The texture stage on a real asset (docs/textures.md; figures in bench/README.md).
 //
 //   rockbake_texture_bench [PRESET] [--resolution N] [--size S] [--threads N] [--lod-size halved|full]
-//                          [--out DIR] [--dump] [--no-fidelity] [--atlas-only]
+//                          [--out DIR] [--dump] [--no-fidelity] [--atlas-only] [--normal-map K=FILE]
 //
 // Bakes PRESET (default presets/goblin.yaml) in-process through the simulation and the mesh
 // stage (bakeMeshes, which hands over the bake source: the refined surface before
@@ -16,6 +16,8 @@
 // LOD0's vertex colours. --dump writes each LOD's atlas, charts in colours, into DIR/<rule>.
 // --atlas-only builds each LOD's UV atlas alone, at the map size the rule gives it, and reports
 // its charts, the segmentation's and the whole atlas's seconds, and the UV targets.
+// --normal-map K=FILE reads LOD K's normal map for the fidelity figures from FILE instead (an RGB
+// or RGBA PNG of the map's size: a compressed set's map decoded by `basisu -unpack`, say).
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
@@ -154,7 +156,13 @@ std::vector<T> readPngRgb(const std::filesystem::path& file, int& size) {
     throw std::runtime_error("cannot read " + file.string());
   }
   png_init_io(png, f);
-  png_read_png(png, info, sizeof(T) == 2 ? PNG_TRANSFORM_SWAP_ENDIAN : PNG_TRANSFORM_IDENTITY, nullptr);
+  // RGB at T's depth whatever the file holds: 8-bit samples widened (× 257) for 16-bit reads (the
+  // compact set's normal maps), alpha dropped (a decoded KTX2's RGBA).
+  png_read_png(png, info,
+               PNG_TRANSFORM_STRIP_ALPHA |
+                   (sizeof(T) == 2 ? PNG_TRANSFORM_SWAP_ENDIAN | PNG_TRANSFORM_EXPAND_16 : PNG_TRANSFORM_STRIP_16),
+               nullptr);
+  if (png_get_channels(png, info) != 3) throw std::runtime_error(file.string() + ": not an RGB image");
   size = int(png_get_image_width(png, info));
   png_bytepp rows = png_get_rows(png, info);
   std::vector<T> pixels(std::size_t(size) * std::size_t(size) * 3);
@@ -367,6 +375,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> rules{"halved", "full"};
   bool fidelity_figures = true;
   bool atlas_only = false;
+  std::map<std::size_t, std::filesystem::path> normal_maps;  // --normal-map K=FILE
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&] { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
@@ -386,7 +395,12 @@ int main(int argc, char** argv) {
       atlas_only = true;
     else if (a == "--lod-size")
       rules = {next()};
-    else
+    else if (a == "--normal-map") {
+      const std::string v = next();
+      const std::size_t eq = v.find('=');
+      if (eq == std::string::npos) throw std::invalid_argument("--normal-map: expected K=FILE, found " + v);
+      normal_maps[std::stoul(v.substr(0, eq))] = v.substr(eq + 1);
+    } else
       preset_file = a;
   }
   spdlog::set_level(spdlog::level::warn);
@@ -472,8 +486,10 @@ int main(int argc, char** argv) {
       atlas.meshes = set.lods[k];
       const UvFigures f = uvFigures(atlas, texels);
       int map_size = 0;
-      const auto map =
-          readPngRgb<std::uint16_t>(last / textureFileName(preset.name, TextureMap::Normal, int(k)), map_size);
+      const auto map = readPngRgb<std::uint16_t>(
+          normal_maps.count(k) ? normal_maps.at(k) : last / textureFileName(preset.name, TextureMap::Normal, int(k)),
+          map_size);
+      if (normal_maps.count(k)) std::printf("LOD%zu's normal map read from %s\n", k, normal_maps.at(k).c_str());
       int colour_size = 0;
       const auto colour = readPngRgb<std::uint8_t>(
           last / textureFileName(preset.name, TextureMap::BaseColor, k == 0 ? -1 : int(k)), colour_size);
