@@ -305,17 +305,20 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       TexelMap texels = rasterizeUv(atlas.meshes, colour_size);
       dilateTexels(texels);
       const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
+      if (relief_maps.empty()) set.missed += hits.missed, sizes[k] = colour_size;  // the LOD's only maps
       step(lod + " colour rays");
       writeLodMaps(request, k, colour_size, {&atlas.meshes, &texels, &hits, &source}, inputs, colour_maps, files[k],
                    step);
     }
-    TexelMap texels = rasterizeUv(atlas.meshes, size);
-    dilateTexels(texels);
-    const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
-    set.missed += hits.missed;
-    step(lod + " rays");
-    if (k == 0) rays.reset();
-    writeLodMaps(request, k, size, {&atlas.meshes, &texels, &hits, &source}, inputs, relief_maps, files[k], step);
+    if (!relief_maps.empty()) {
+      TexelMap texels = rasterizeUv(atlas.meshes, size);
+      dilateTexels(texels);
+      const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
+      set.missed += hits.missed;
+      step(lod + " rays");
+      if (k == 0) rays.reset();
+      writeLodMaps(request, k, size, {&atlas.meshes, &texels, &hits, &source}, inputs, relief_maps, files[k], step);
+    }
     // Listed in the set's order, whichever size made them first.
     std::stable_sort(files[k].begin(), files[k].end(), [&maps](const TextureFile& a, const TextureFile& b) {
       return std::find(maps.begin(), maps.end(), a.map) < std::find(maps.begin(), maps.end(), b.map);

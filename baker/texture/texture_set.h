@@ -65,9 +65,11 @@ struct TextureFile {
 };
 
 struct TextureSet {
-  std::vector<AssetMeshes> lods;        // the LODs with uvs and tangents, vertices split along seams
-  std::vector<std::size_t> charts;      // per LOD
-  std::vector<int> sizes;               // per LOD: its relief maps' width and height, texels (files: each map's)
+  std::vector<AssetMeshes> lods;    // the LODs with uvs and tangents, vertices split along seams
+  std::vector<std::size_t> charts;  // per LOD
+  // Per LOD: its maps' width and height, texels: the relief maps' (its colour maps' when it has
+  // only those; `files` gives each map's).
+  std::vector<int> sizes;
   std::vector<double> texels_per_unit;  // per LOD: texel density, texels per world unit
   std::vector<double> coverage;         // per LOD: the share of its maps its charts cover (uvCoverage)
   std::vector<TextureFile> files;       // LOD by LOD, LOD0 first, each LOD's in the order of params.maps

@@ -685,6 +685,20 @@ TEST(TextureSet, ColourMapsAtTheirOwnSizeReadAsTheFullSizeOnes) {
   EXPECT_EQ(readPngHeader(halved.path() / "c_BaseColor.png").width, 256u);
   // The relief maps are the same bytes as at density 0.
   EXPECT_EQ(test::readBytes(halved.path() / "c_Normal_LOD0.png"), test::readBytes(full.path() / "c_Normal_LOD0.png"));
+  {
+    // A set of colour maps alone is at their size, and its texels traced once.
+    test::TempDir alone;
+    TextureSetRequest colour_only = request;
+    colour_only.params.maps = {TextureMap::BaseColor};
+    colour_only.folder = alone.path();
+    const TextureSet only = bakeTextureSet({source}, source, colour_only);
+    EXPECT_EQ(only.sizes, (std::vector<int>{256}));
+    ASSERT_EQ(only.files.size(), 2u);  // and the look's History map
+    EXPECT_EQ(only.files[0].size, 256);
+    EXPECT_EQ(test::readBytes(alone.path() / "c_BaseColor.png"), test::readBytes(halved.path() / "c_BaseColor.png"));
+    EXPECT_EQ(only.steps.all().end(), std::find_if(only.steps.all().begin(), only.steps.all().end(),
+                                                   [](const PhaseTime& t) { return t.name == "lod0 rays"; }));
+  }
 
   // On the texels the uvs cover, each half-size map sampled where a renderer samples it (at the
   // full map's texel centres) against the full-size map: within a few 8-bit steps on average,
