@@ -37,7 +37,7 @@ void writePly(const SurfaceMesh& m, const std::filesystem::path& file) {
       "property float durability\nproperty float colluvium\nproperty float curvature\n"
       "element face {}\nproperty list uchar {} vertex_indices\nend_header\n",
       m.name, n, m.triangles.size(), n <= 65536 ? "ushort" : "uint");
-  // Indices in 16 bits where they fit, as the GLB's: a seventh of a small surface's file.
+  // Indices in 16 bits where they fit, as the GLB's: a fifth off a small surface's file.
   const bool narrow = n <= 65536;
   out.reserve(out.size() + n * 39 + m.triangles.size() * (narrow ? 7 : 13));
   for (std::size_t i = 0; i < n; ++i) {
