@@ -305,7 +305,10 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       TexelMap texels = rasterizeUv(atlas.meshes, colour_size);
       dilateTexels(texels);
       const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
-      if (relief_maps.empty()) set.missed += hits.missed, sizes[k] = colour_size;  // the LOD's only maps
+      if (relief_maps.empty()) {  // the LOD's only maps: its size and its misses are theirs
+        sizes[k] = colour_size;
+        set.missed += hits.missed;
+      }
       step(lod + " colour rays");
       writeLodMaps(request, k, colour_size, {&atlas.meshes, &texels, &hits, &source}, inputs, colour_maps, files[k],
                    step);
@@ -323,7 +326,7 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
     std::stable_sort(files[k].begin(), files[k].end(), [&maps](const TextureFile& a, const TextureFile& b) {
       return std::find(maps.begin(), maps.end(), a.map) < std::find(maps.begin(), maps.end(), b.map);
     });
-    if (request.progress) request.progress(int(k), size, ++lods_done, lod_count);
+    if (request.progress) request.progress(int(k), sizes[k], ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {
     set.charts.push_back(atlas.charts);
