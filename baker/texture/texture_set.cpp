@@ -233,6 +233,44 @@ void writeLodMaps(const TextureSetRequest& request, std::size_t k, int size, con
   }
 }
 
+// The ray scene a LOD's texels are traced to, and whether to free it after the LOD's last trace
+// (LOD0's: its maps, the largest, are then made without it).
+struct LodRays {
+  std::unique_ptr<RaySource>& scene;
+  bool free_after;
+  double cage;
+};
+
+// LOD k's maps, lodMaps in that order, into `files`: the colour maps at colourMapSize first, from
+// texels and rays of their own, freed before the relief maps' at the LOD's `size` are made. Returns
+// the size the LOD's maps are listed at (the colour maps' when it has no relief map) and adds the
+// misses of its texels at that size to `missed`.
+int writeLodMapSet(const TextureSetRequest& request, std::size_t k, int size, const UvAtlas& atlas,
+                   const AssetMeshes& source, LodRays rays, const MapInputs& inputs, std::vector<TextureFile>& files,
+                   std::size_t& missed, StepTimer& step) {
+  const std::vector<TextureMap> maps = lodMaps(request.params, source);
+  std::vector<TextureMap> colour_maps, relief_maps;
+  const int colour_size = colourMapSize(request.params, size, atlas.texels_per_unit * request.voxel_size);
+  for (const TextureMap map : maps) (colour_size < size && isColourMap(map) ? colour_maps : relief_maps).push_back(map);
+  // One pass: the texels at `at`, dilated, traced, then `which` made from them.
+  const auto pass = [&](int at, const std::vector<TextureMap>& which, const char* step_name, bool last) {
+    TexelMap texels = rasterizeUv(atlas.meshes, at);
+    dilateTexels(texels);
+    const TexelHits hits = traceTexels(atlas.meshes, texels, *rays.scene, rays.cage);
+    if (last) missed += hits.missed;
+    step("lod" + std::to_string(k) + step_name);
+    if (last && rays.free_after) rays.scene.reset();
+    writeLodMaps(request, k, at, {&atlas.meshes, &texels, &hits, &source}, inputs, which, files, step);
+  };
+  if (!colour_maps.empty()) pass(colour_size, colour_maps, " colour rays", relief_maps.empty());
+  if (!relief_maps.empty()) pass(size, relief_maps, " rays", true);
+  // Listed in the set's order, whichever size made them first.
+  std::stable_sort(files.begin(), files.end(), [&maps](const TextureFile& a, const TextureFile& b) {
+    return std::find(maps.begin(), maps.end(), a.map) < std::find(maps.begin(), maps.end(), b.map);
+  });
+  return relief_maps.empty() ? colour_size : size;
+}
+
 }  // namespace
 
 TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshes& source,
@@ -293,39 +331,8 @@ TextureSet bakeTextureSet(const std::vector<AssetMeshes>& lods, const AssetMeshe
       for (std::size_t s = 0; s < 2; ++s)
         for (const std::uint32_t v : atlas.source_vertex[s]) occlusion[s].push_back(lod_occlusion[k][s][v]);
     const MapInputs inputs{request, look, occlusion, contact};
-
-    // The colour maps at their own, smaller size (colourMapSize) first, from texels and hits of
-    // their own, freed before the relief maps' are made: the ray scene serves both.
-    const std::vector<TextureMap> maps = lodMaps(params, source);
-    std::vector<TextureMap> colour_maps, relief_maps;
-    const int colour_size = colourMapSize(params, size, atlas.texels_per_unit * request.voxel_size);
-    for (const TextureMap map : maps)
-      (colour_size < size && isColourMap(map) ? colour_maps : relief_maps).push_back(map);
-    if (!colour_maps.empty()) {
-      TexelMap texels = rasterizeUv(atlas.meshes, colour_size);
-      dilateTexels(texels);
-      const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
-      if (relief_maps.empty()) {  // the LOD's only maps: its size and its misses are theirs
-        sizes[k] = colour_size;
-        set.missed += hits.missed;
-      }
-      step(lod + " colour rays");
-      writeLodMaps(request, k, colour_size, {&atlas.meshes, &texels, &hits, &source}, inputs, colour_maps, files[k],
-                   step);
-    }
-    if (!relief_maps.empty()) {
-      TexelMap texels = rasterizeUv(atlas.meshes, size);
-      dilateTexels(texels);
-      const TexelHits hits = traceTexels(atlas.meshes, texels, *rays, cage);
-      set.missed += hits.missed;
-      step(lod + " rays");
-      if (k == 0) rays.reset();
-      writeLodMaps(request, k, size, {&atlas.meshes, &texels, &hits, &source}, inputs, relief_maps, files[k], step);
-    }
-    // Listed in the set's order, whichever size made them first.
-    std::stable_sort(files[k].begin(), files[k].end(), [&maps](const TextureFile& a, const TextureFile& b) {
-      return std::find(maps.begin(), maps.end(), a.map) < std::find(maps.begin(), maps.end(), b.map);
-    });
+    sizes[k] =
+        writeLodMapSet(request, k, size, atlas, source, {rays, k == 0, cage}, inputs, files[k], set.missed, step);
     if (request.progress) request.progress(int(k), sizes[k], ++lods_done, lod_count);
   }
   for (UvAtlas& atlas : atlases) {
